@@ -1,0 +1,42 @@
+"""``dgpc inspect``: an artifact's metrics as JSON on stdout (SPEC §7)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from dgpc_cli.io.artifact import artifact_paths, dumps_json
+from dgpc_cli.io.net import read_net
+from dgpc_cli.metrics.clairaut import parse_axis
+from dgpc_cli.stages.inspect import inspect_net
+
+
+def _axis(ctx, param, value):
+    if value is None:
+        return None
+    try:
+        return parse_axis(value)
+    except ValueError as err:
+        raise click.BadParameter(str(err), ctx=ctx, param=param) from None
+
+
+@click.command(short_help="Print an artifact's metrics as JSON.")
+@click.argument("stem", type=click.Path(path_type=Path))
+@click.option("--axis", callback=_axis, metavar="px,py,pz,dx,dy,dz",
+              help="Axis of revolution for Clairaut's relation (default: the one the net "
+                   "records, if any).")
+@click.option("--against", type=click.Path(path_type=Path), metavar="STEM0",
+              help="Reference net for the strain (same grid).")
+def inspect(stem, axis, against):
+    """Print the metrics of the net STEM (SPEC §7) as JSON on stdout.
+
+    R (the paper's constraint error at mean edge length 1), geometric residuals, Clairaut
+    (with an axis), strain (with --against), Hausdorff distance (when the net records a
+    reference mesh that is still there).
+    """
+    json_path, _ = artifact_paths(stem)
+    net = read_net(stem)
+    reference = read_net(against) if against is not None else None
+    metrics = inspect_net(net, json_path, axis=axis, against=reference)
+    click.echo(dumps_json(metrics).decode(), nl=False)

@@ -1,0 +1,122 @@
+"""``dgpc optimize``: guided projection in one of the modes of SPEC §4."""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+import click
+
+from dgpc_cli.cli.options import check_writable, force_opt, output_opt, progressbar
+from dgpc_cli.core.reference import ReferenceSurface
+from dgpc_cli.core.solver.linear import BACKENDS
+from dgpc_cli.errors import DgpcError, NotConverged
+from dgpc_cli.io.artifact import artifact_paths, file_input, resolve_input
+from dgpc_cli.io.handles import read_handles
+from dgpc_cli.io.mesh import load_mesh
+from dgpc_cli.io.net import NetArtifact, read_net, write_net
+from dgpc_cli.stages.inspect import summarize
+from dgpc_cli.stages.modes import MODES, describe_weights, mode_weights
+from dgpc_cli.stages.optimize import optimize_net
+from dgpc_cli.tolerances import tol as TOL
+
+log = logging.getLogger(__name__)
+
+
+def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: str):
+    """The reference mesh: --reference, else the one the net records (fit needs one)."""
+    if reference is None and mode == "fit" and net.data.get("reference"):
+        reference = resolve_input(net.data["reference"], json_path)
+        log.info("using the reference recorded in %s: %s", json_path, reference)
+    if reference is None:
+        if mode == "fit":
+            raise DgpcError("--mode fit needs a reference mesh (--reference MESH)",
+                            source="--reference")
+        return None
+    return load_mesh(reference)
+
+
+@click.command(short_help="Optimize a net (fit, developable, revolution, isometric).")
+@click.argument("stem", type=click.Path(path_type=Path))
+@click.option("--mode", type=click.Choice(list(MODES)), required=True,
+              help="fit: gpc on a reference; developable: nearly developable (Jacobi (8)); "
+                   "revolution: isometric to a surface of revolution (7); isometric: "
+                   "isometric deformation by handles.")
+@click.option("--reference", type=click.Path(dir_okay=False, path_type=Path),
+              help="Reference triangle mesh (OBJ/PLY/STL/OFF) for the approximation term.")
+@click.option("--handles", type=click.Path(dir_okay=False, path_type=Path),
+              help='Handles JSON: {"handles": [{"index": [u, v], "target": [x, y, z]} | '
+                   '{"index": [u, v], "offset": [dx, dy, dz]}]}.')
+@click.option("--steps", type=click.IntRange(min=1), default=1, show_default=True,
+              help="Reach the handles in K increments, as a dragged handle would.")
+@click.option("--weight", "weights", multiple=True, metavar="NAME=VALUE|NAME=A->B",
+              help="Override a term's weight, or a schedule such as fairness=0.01->0 "
+                   "(repeatable).")
+@click.option("--max-iter", type=click.IntRange(min=1), default=TOL.max_iter,
+              show_default=True, help="Iteration limit per step.")
+@click.option("--tol", type=click.FloatRange(min=0, min_open=True), default=TOL.solver_R,
+              show_default=True, help="Tolerance on the residual of the hard constraints "
+                                      "(net scaled to mean edge length 1).")
+@click.option("--solver", "backend", type=click.Choice(["auto", *BACKENDS]), default="auto",
+              show_default=True, help="Sparse linear solver of the normal equations.")
+@output_opt
+@force_opt
+@click.pass_context
+def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol, backend,
+             output, force):
+    """Optimize the net STEM with guided projection (paper §5) and write it to -o STEM2.
+
+    Exit code 3 if the last step does not reach --tol (the artifact is still written, with
+    its status).
+    """
+    try:
+        schedules = mode_weights(mode, weights)
+    except ValueError as err:
+        raise click.BadParameter(str(err), ctx=ctx, param_hint="--weight") from None
+    json_path, _ = artifact_paths(stem)
+    check_writable(output, force)
+    net = read_net(stem)
+    mesh = _reference(net, json_path, reference, mode)
+    handle_ids = handle_targets = None
+    if handles is not None:
+        handle_ids, handle_targets = read_handles(handles, net.shape, net.f)
+    if mode == "isometric" and handle_ids is None:
+        raise DgpcError("--mode isometric needs --handles", source="--handles")
+
+    with progressbar(ctx, steps * max_iter, f"optimize ({mode})") as bar:
+        last = [0]
+
+        def progress(k, record):
+            bar.update(k + 1 - last[0])
+            last[0] = k + 1
+
+        outcome = optimize_net(
+            net.f, schedules,
+            reference=ReferenceSurface.from_mesh(mesh) if mesh is not None else None,
+            handle_ids=handle_ids, handle_targets=handle_targets, steps=steps,
+            max_iter=max_iter, tol=tol, backend=backend, progress=progress)
+        bar.update(steps * max_iter - last[0])
+
+    out_json, _ = artifact_paths(output)
+    folder = out_json.resolve().parent
+    inputs = {"net": file_input(json_path, folder)}
+    data = {k: v for k, v in net.data.items() if k in ("surface",)}
+    if mesh is not None:
+        inputs["reference"] = data["reference"] = file_input(mesh.path, folder)
+    if handle_ids is not None:
+        inputs["handles"] = file_input(handles, folder)
+        data["handles"] = {"ids": handle_ids.tolist(), "targets": handle_targets.tolist()}
+    result = NetArtifact(
+        f=outcome.f,
+        parameters={"mode": mode, "weights": describe_weights(schedules), "steps": steps,
+                    "max_iter": max_iter, "tol": tol, "solver": backend},
+        inputs=inputs, data=data, status=outcome.record())
+    result.metrics = summarize(result, mesh=mesh,
+                               against=net if mode == "isometric" else None)
+    write_net(output, result, force=force)
+    click.echo(str(out_json))
+    log.info("%s: %s, %d iterations, R = %.3g", out_json, outcome.status, outcome.iterations,
+             result.metrics["R"])
+    if not outcome.converged:
+        raise NotConverged(f"did not reach the tolerance: {outcome.message}; written anyway",
+                           source=out_json)

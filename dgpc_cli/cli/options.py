@@ -1,0 +1,39 @@
+"""Options shared by the commands, and small helpers for writing artifacts."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import click
+
+from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.artifact import artifact_paths
+
+output_opt = click.option(
+    "-o", "--output", "output", required=True, type=click.Path(dir_okay=False, path_type=Path),
+    help="Output artifact stem: writes STEM.json and STEM.obj.")
+force_opt = click.option("--force", is_flag=True, help="Overwrite existing output files.")
+
+
+def check_writable(stem: Path, force: bool, *extra: Path) -> None:
+    """Fail early (before any work) when an output exists and --force is not given."""
+    if force:
+        return
+    for path in (*artifact_paths(stem), *extra):
+        if path.exists():
+            raise DgpcError("already exists; use --force to overwrite", source=path)
+    parent = Path(stem).parent
+    if not parent.is_dir():
+        raise DgpcError("directory does not exist", source=parent)
+
+
+def show_progress(ctx) -> bool:
+    return ctx.obj.get("verbosity", 0) >= 0
+
+
+def progressbar(ctx, length: int, label: str):
+    """A click progress bar on stderr (silent with -q)."""
+    return click.progressbar(length=length, label=label, file=sys.stderr,
+                             show_eta=False, show_pos=True,
+                             hidden=not show_progress(ctx))

@@ -1,0 +1,1 @@
+"""Numerical core: the net's variable layout, the constraint terms and the solver."""

@@ -1,0 +1,29 @@
+"""Constraint terms of SPEC §4. Each is ``term(x, layout, ...) -> (phi, J)``."""
+
+from dgpc_cli.core.constraints.approximation import approximation
+from dgpc_cli.core.constraints.fairness import fairness
+from dgpc_cli.core.constraints.gpc import gpc
+from dgpc_cli.core.constraints.handles import handles
+from dgpc_cli.core.constraints.isometry import isometry
+from dgpc_cli.core.constraints.net import net
+from dgpc_cli.core.constraints.strip_widths import (
+    arclength,
+    developable,
+    equal_strip_width,
+    ratio_revolution,
+)
+
+TERMS = {
+    "net": net,
+    "gpc": gpc,
+    "arclength": arclength,
+    "equal_strip_width": equal_strip_width,
+    "ratio_revolution": ratio_revolution,
+    "developable": developable,
+    "isometry": isometry,
+    "approximation": approximation,
+    "handles": handles,
+    "fairness": fairness,
+}
+
+__all__ = ["TERMS", *TERMS]

@@ -1,0 +1,126 @@
+"""Bind the constraint terms of SPEC §4 to one net's data, in units of its mean edge length.
+
+The solver works on a net scaled to mean edge length 1 (so weights, ε and tolerances do not depend
+on the model's units; the paper measures R after the same rescaling, §6.2.5). A ``Problem`` holds
+that scale and the data of the data-bound terms (isometry lengths, handles, reference surface).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from dgpc_cli.core.constraints import TERMS
+from dgpc_cli.core.layout import NetLayout
+from dgpc_cli.core.solver import Schedule, Term
+
+#: Terms that model the geometry asked for; the tolerance applies to them. The others
+#: (approximation, fairness) are soft: they pull, and may be left with a residual.
+HARD_TERMS = ("net", "gpc", "arclength", "equal_strip_width", "ratio_revolution", "developable",
+              "isometry", "handles")
+SOFT_TERMS = ("approximation", "fairness")
+
+
+def mean_edge_length(f: np.ndarray) -> float:
+    """Mean length of all edges of a grid ``(m, n, 3)``."""
+    f = np.asarray(f, dtype=float)
+    du = np.linalg.norm(f[1:] - f[:-1], axis=-1)
+    dv = np.linalg.norm(f[:, 1:] - f[:, :-1], axis=-1)
+    return float((du.sum() + dv.sum()) / (du.size + dv.size))
+
+
+@dataclass
+class Problem:
+    """The terms of one optimization on an ``m × n`` net, in scaled units.
+
+    Attributes
+    ----------
+    layout : NetLayout
+    scale : float
+        Length unit of the scaled problem (the mean edge length of the input net).
+    weights : dict[str, Schedule]
+        Weight schedule per term name; terms with weight 0 throughout are left out.
+    w0 : (|E|,) array, optional
+        Edge lengths of the reference net for ``isometry`` (model units).
+    handle_ids, handle_targets : arrays, optional
+        Handle vertex ids ``(l,)`` and targets ``(l, 3)`` (model units).
+    reference : object with ``closest(points) -> (p, n)`` and ``scaled(s)``, optional
+    """
+
+    layout: NetLayout
+    scale: float
+    weights: dict
+    w0: np.ndarray | None = None
+    handle_ids: np.ndarray | None = None
+    handle_targets: np.ndarray | None = None
+    reference: object | None = None
+    _scaled_reference: object | None = field(default=None, init=False, repr=False)
+
+    def active(self) -> list[str]:
+        """Names of the terms in play, in the canonical order of ``TERMS``."""
+        names = []
+        for name in TERMS:
+            sched = self.weights.get(name)
+            if sched is None or (sched.start == 0 and sched.end == 0):
+                continue
+            if name == "approximation" and self.reference is None:
+                continue
+            if name == "handles" and self.handle_ids is None:
+                continue
+            if name == "isometry" and self.w0 is None:
+                continue
+            names.append(name)
+        return names
+
+    def _bind(self, name: str, targets=None):
+        lay, s = self.layout, self.scale
+        fn = TERMS[name]
+        if name == "isometry":
+            w0 = self.w0 / s
+            return lambda x: fn(x, lay, w0)
+        if name == "handles":
+            ids = self.handle_ids
+            p = (self.handle_targets if targets is None else targets) / s
+            return lambda x: fn(x, lay, ids, p)
+        if name == "approximation":
+            if self._scaled_reference is None:
+                self._scaled_reference = self.reference.scaled(1.0 / s)
+            ref = self._scaled_reference
+            return lambda x: fn(x, lay, ref)
+        return lambda x: fn(x, lay)
+
+    def terms(self, handle_targets=None) -> list[Term]:
+        """Bound terms for the solver; ``handle_targets`` overrides the targets (handle steps)."""
+        return [Term(name, self._bind(name, handle_targets), self.weights[name],
+                     hard=name in HARD_TERMS)
+                for name in self.active()]
+
+    def x_from_vertices(self, f: np.ndarray) -> np.ndarray:
+        """Scaled variable vector with e, w derived from the vertex positions."""
+        return self.layout.pack(np.asarray(f, dtype=float) / self.scale)
+
+    def vertices(self, x: np.ndarray) -> np.ndarray:
+        """Vertex grid ``(m, n, 3)`` in model units."""
+        return self.layout.vertices(x) * self.scale
+
+    def residual_norms(self, f: np.ndarray) -> dict[str, float]:
+        """Unweighted residual norm of every active term at the vertex positions f.
+
+        The net is rescaled to its own mean edge length 1 first, as the paper does for R.
+        """
+        own = mean_edge_length(f)
+        rescaled = Problem(self.layout, own, self.weights, self.w0, self.handle_ids,
+                           self.handle_targets, self.reference)
+        x = rescaled.x_from_vertices(f)
+        return {t.name: float(np.linalg.norm(t.func(x)[0])) for t in rescaled.terms()}
+
+
+def constraint_error(norms: dict[str, float], weights: dict) -> float:
+    """The paper's R = (Σ φ_i²)^½ (§6.2.5) over the terms with a positive final weight.
+
+    Fairness is a regularizer, not a constraint, and is left out.
+    """
+    sq = sum(v * v for k, v in norms.items()
+             if k != "fairness" and weights.get(k, Schedule.constant(0)).end > 0)
+    return float(np.sqrt(sq))

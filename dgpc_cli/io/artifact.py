@@ -1,0 +1,130 @@
+"""The artifact envelope of SPEC §3: deterministic JSON, input hashes, validated reading."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+from pathlib import Path
+from typing import Any
+
+from .. import __version__
+from ..errors import DgpcError
+from .jsonable import load_schema, read_json, schema_exists, to_jsonable, validate
+
+SCHEMA_VERSION = 1
+SUPPORTED_VERSIONS = (1,)
+KINDS = ("net", "mold", "strips", "flat", "sheets")
+ENVELOPE_KEYS = ("kind", "schema_version", "created_by", "inputs", "parameters", "data",
+                 "metrics", "status")
+
+#: Envelope check for kinds without a shipped schema of their own.
+ENVELOPE_SCHEMA: dict = {
+    "type": "object",
+    "required": list(ENVELOPE_KEYS),
+    "properties": {
+        "kind": {"type": "string"},
+        "schema_version": {"type": "integer"},
+        "created_by": {"type": "string"},
+        "inputs": {"type": "object", "additionalProperties": {
+            "type": "object", "required": ["path", "sha256"],
+            "properties": {"path": {"type": "string"},
+                           "sha256": {"type": "string", "pattern": "^[0-9a-f]{64}$"}}}},
+        **{k: {"type": "object"} for k in ("parameters", "data", "metrics", "status")},
+    },
+}
+
+
+def created_by() -> str:
+    """``"dgpc <version>"``."""
+    return f"dgpc {__version__}"
+
+
+def dumps_json(obj: Any) -> bytes:
+    """Deterministic UTF-8 JSON: sorted keys, indent 2, trailing newline, numpy converted,
+    non-finite floats as ``null``."""
+    text = json.dumps(to_jsonable(obj), sort_keys=True, indent=2, allow_nan=False,
+                      ensure_ascii=False)
+    return (text + "\n").encode("utf-8")
+
+
+def sha256_bytes(data: bytes) -> str:
+    """Hex sha256 of ``data``."""
+    return hashlib.sha256(data).hexdigest()
+
+
+def sha256_file(path: str | Path) -> str:
+    """Hex sha256 of a file's bytes; DgpcError naming the file if it cannot be read."""
+    try:
+        return sha256_bytes(Path(path).read_bytes())
+    except OSError as e:
+        raise DgpcError(f"cannot read: {e.strerror or e}", source=path) from None
+
+
+def file_input(path: str | Path, relative_to: str | Path) -> dict[str, str]:
+    """``{"path", "sha256"}`` of an input file, the path POSIX and relative to the artifact's
+    folder ``relative_to`` (``os.path.relpath``)."""
+    rel = os.path.relpath(Path(path).resolve(), Path(relative_to).resolve())
+    return {"path": Path(rel).as_posix(), "sha256": sha256_file(path)}
+
+
+def relative_input(path: str | Path, relative_to: str | Path, data: bytes) -> dict[str, str]:
+    """Like :func:`file_input` for a file about to be written with the bytes ``data``."""
+    rel = os.path.relpath(Path(path).resolve(), Path(relative_to).resolve())
+    return {"path": Path(rel).as_posix(), "sha256": sha256_bytes(data)}
+
+
+def resolve_input(record: dict, artifact_json: str | Path) -> Path:
+    """The path of an input recorded as ``{"path", "sha256"}`` relative to the artifact."""
+    return Path(artifact_json).resolve().parent / record["path"]
+
+
+def artifact_paths(stem: str | Path) -> tuple[Path, Path]:
+    """``(STEM.json, STEM.obj)`` for a stem given as ``STEM``, ``STEM.json`` or ``STEM.obj``."""
+    text = os.fspath(stem)
+    for suffix in (".json", ".obj"):
+        if text.lower().endswith(suffix):
+            text = text[: -len(suffix)]
+            break
+    if not text or text.endswith(("/", os.sep)):
+        raise DgpcError("not an artifact stem (needs a file name)", source=stem)
+    return Path(text + ".json"), Path(text + ".obj")
+
+
+def make_envelope(kind: str, *, inputs: dict | None = None, parameters: dict | None = None,
+                  data: dict | None = None, metrics: dict | None = None,
+                  status: dict | None = None) -> dict:
+    """A complete envelope dict of ``kind`` (schema version and ``created_by`` filled in)."""
+    return {"kind": kind, "schema_version": SCHEMA_VERSION, "created_by": created_by(),
+            "inputs": dict(inputs or {}), "parameters": dict(parameters or {}),
+            "data": dict(data or {}), "metrics": dict(metrics or {}),
+            "status": dict(status or {})}
+
+
+def validate_envelope(doc: Any, kind: str, source: str | Path) -> None:
+    """Check an envelope: a JSON object, its ``kind``, a supported ``schema_version``, then the
+    kind's JSON Schema (``io/schemas/<kind>.schema.json``, else the generic envelope schema)."""
+    if not isinstance(doc, dict):
+        raise DgpcError(f"not a dgpc artifact: top level is a JSON "
+                        f"{type(doc).__name__}, expected an object", source=source)
+    found = doc.get("kind")
+    if isinstance(found, str) and found != kind:
+        raise DgpcError(f"kind: is a '{found}' artifact, expected '{kind}'", source=source)
+    version = doc.get("schema_version")
+    if isinstance(version, int) and not isinstance(version, bool) \
+            and version not in SUPPORTED_VERSIONS:
+        raise DgpcError(f"schema_version: {version} is not supported (supported: "
+                        f"{', '.join(map(str, SUPPORTED_VERSIONS))}); "
+                        f"written by {doc.get('created_by', 'an unknown program')}",
+                        source=source)
+    schema = load_schema(kind) if schema_exists(kind) else {
+        **ENVELOPE_SCHEMA, "properties": {**ENVELOPE_SCHEMA["properties"], "kind": {"const": kind}}}
+    validate(doc, schema, source)
+
+
+def load_envelope(path: str | Path, kind: str) -> dict:
+    """Read and validate the JSON envelope of a ``kind`` artifact; ``path`` may be a stem."""
+    json_path, _ = artifact_paths(path)
+    doc = read_json(json_path)
+    validate_envelope(doc, kind, json_path)
+    return doc

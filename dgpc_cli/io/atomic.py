@@ -1,0 +1,118 @@
+"""All-or-nothing writing of several files (SPEC §3: temp file + rename, nothing partial)."""
+
+from __future__ import annotations
+
+import logging
+import os
+import secrets
+import tempfile
+from pathlib import Path
+
+from ..errors import DgpcError
+
+log = logging.getLogger(__name__)
+
+
+def _check_targets(paths: list[Path], force: bool) -> None:
+    for path in paths:
+        parent = path.parent
+        if not parent.is_dir():
+            raise DgpcError("directory does not exist", source=parent)
+        if path.is_dir():
+            raise DgpcError("is a directory, cannot write a file there", source=path)
+        if path.exists() and not force:
+            raise DgpcError("already exists; use --force to overwrite", source=path)
+
+
+def _write_temp(path: Path, data: bytes, mode: int) -> Path:
+    """Write ``data`` to a hidden temp file beside ``path`` (flushed and fsynced)."""
+    fd, name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    tmp = Path(name)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.chmod(tmp, mode)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+    return tmp
+
+
+def _backup(path: Path) -> Path | None:
+    """Hard link of an existing target so that a failed batch can restore it (None if absent)."""
+    if not path.exists():
+        return None
+    name = path.parent / f".{path.name}.{secrets.token_hex(6)}.bak"
+    try:
+        os.link(path, name)
+    except OSError:  # no hard links on this file system: the old file cannot be restored
+        log.debug("no backup of %s (hard links unsupported)", path)
+        return None
+    return name
+
+
+def _fsync_dir(directory: Path) -> None:
+    try:
+        fd = os.open(directory, os.O_RDONLY)
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
+
+
+def write_files(files: dict[Path, bytes], *, force: bool = False) -> None:
+    """Write every ``path → bytes`` of ``files`` or none of them.
+
+    All targets are checked first (parent directory exists; target absent unless ``force``),
+    then each is written to a hidden temp file in its own directory, flushed and fsynced, and
+    only then moved onto its target with ``os.replace``. On any failure the temp files are
+    removed, targets already replaced in this call are restored from a hard-link backup (or
+    removed if they did not exist before), and the error is raised (an ``OSError`` as a
+    DgpcError naming the file).
+    """
+    items = [(Path(p), bytes(d)) for p, d in files.items()]
+    _check_targets([p for p, _ in items], force)
+    umask = os.umask(0)
+    os.umask(umask)
+    mode = 0o666 & ~umask
+    temps: list[Path] = []
+    existed = {p: p.exists() for p, _ in items}
+    backups: dict[Path, Path | None] = {}
+    replaced: list[Path] = []
+    current = items[0][0] if items else None
+    try:
+        for path, data in items:
+            current = path
+            temps.append(_write_temp(path, data, mode))
+        for path in (p for p, _ in items):
+            backups[path] = _backup(path)
+        for (path, _), tmp in zip(items, temps, strict=True):
+            current = path
+            os.replace(tmp, path)
+            replaced.append(path)
+    except BaseException as e:
+        for tmp in temps:
+            tmp.unlink(missing_ok=True)
+        for path in replaced:
+            if backups.get(path) is not None:
+                os.replace(backups.pop(path), path)
+            elif not existed[path]:
+                path.unlink(missing_ok=True)
+        for bak in backups.values():
+            if bak is not None:
+                bak.unlink(missing_ok=True)
+        if isinstance(e, OSError):
+            raise DgpcError(f"cannot write: {e.strerror or e}", source=current) from e
+        raise
+    for bak in backups.values():
+        if bak is not None:
+            bak.unlink(missing_ok=True)
+    for directory in {p.parent for p, _ in items}:
+        _fsync_dir(directory)
+    log.debug("wrote %s", ", ".join(str(p) for p, _ in items))

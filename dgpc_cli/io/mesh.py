@@ -1,0 +1,166 @@
+"""Reference meshes (OBJ/PLY/STL/OFF) read through trimesh, cleaned, validated (SPEC §2, §5)."""
+
+from __future__ import annotations
+
+import hashlib
+import io
+import logging
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from scipy import sparse
+from scipy.sparse import csgraph
+
+from ..errors import DgpcError
+
+log = logging.getLogger(__name__)
+
+FORMATS = ("obj", "ply", "stl", "off")
+#: Triangles thinner than this fraction of the bounding-box diagonal count as degenerate.
+DEGENERATE_HEIGHT = 1e-10
+
+
+@dataclass(frozen=True)
+class ReferenceMesh:
+    """A cleaned triangle mesh: ``vertices (k, 3)`` float64, ``faces (t, 3)`` int64, consistently
+    wound; ``path`` and ``sha256`` of the file it came from."""
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    path: Path
+    sha256: str
+
+    @property
+    def bbox_diagonal(self) -> float:
+        """Length of the axis-aligned bounding-box diagonal."""
+        return float(np.linalg.norm(self.vertices.max(axis=0) - self.vertices.min(axis=0)))
+
+
+def _read(path: Path) -> bytes:
+    try:
+        return path.read_bytes()
+    except FileNotFoundError:
+        raise DgpcError("no such file", source=path) from None
+    except IsADirectoryError:
+        raise DgpcError("is a directory, expected a mesh file", source=path) from None
+    except OSError as e:
+        raise DgpcError(f"cannot read: {e.strerror or e}", source=path) from None
+
+
+def _parse(data: bytes, fmt: str, path: Path):
+    """Raw (vertices, faces) via ``trimesh.load(..., force="mesh", process=False)``."""
+    import trimesh
+
+    name = fmt.upper()
+    if fmt in ("obj", "off"):  # text formats
+        try:
+            data.decode("utf-8")
+        except UnicodeDecodeError:
+            if b"\0" in data:
+                raise DgpcError(f"not a mesh: binary data in a .{fmt} file", source=path) from None
+            data = data.decode("latin-1").encode("utf-8")
+    try:
+        loaded = trimesh.load(io.BytesIO(data), file_type=fmt, force="mesh", process=False)
+    except Exception as e:  # trimesh raises anything from ValueError to IndexError
+        detail = "unreadable data" if isinstance(e, ImportError) else f"{type(e).__name__}: {e}"
+        raise DgpcError(f"cannot read as {name} mesh ({detail[:120]})", source=path) from None
+    vertices = np.asarray(getattr(loaded, "vertices", np.zeros((0, 3))), dtype=np.float64)
+    faces = np.asarray(getattr(loaded, "faces", np.zeros((0, 3))), dtype=np.int64)
+    return vertices, faces
+
+
+def consistent_winding(faces: np.ndarray) -> np.ndarray:
+    """Faces ``(t, 3)`` re-wound so that neighbours agree (each manifold edge is traversed in
+    opposite directions by its two faces); the lowest face of each connected patch keeps its
+    orientation. Vectorized replacement for ``trimesh.repair.fix_winding`` (which needs
+    networkx): parity of "same-direction" edges along a spanning forest of the face graph."""
+    faces = np.asarray(faces, dtype=np.int64)
+    t = len(faces)
+    directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    key = np.sort(directed, axis=1)
+    forward = directed[:, 0] < directed[:, 1]
+    _, inverse, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    inverse = inverse.ravel()
+    order = np.argsort(inverse, kind="stable")
+    manifold = counts[inverse[order]] == 2
+    pairs = order[manifold].reshape(-1, 2)  # the two half-edges of each manifold edge
+    if len(pairs) == 0:
+        return faces.copy()
+    fa, fb = pairs[:, 0] // 3, pairs[:, 1] // 3
+    same = (forward[pairs[:, 0]] == forward[pairs[:, 1]]).astype(np.float64)
+    graph = sparse.coo_matrix((2.0 + same, (fa, fb)), shape=(t, t)).tocsr()
+    forest = csgraph.minimum_spanning_tree(graph + graph.T)
+    _, labels = csgraph.connected_components(forest, directed=False)
+    roots = np.unique(labels, return_index=True)[1]
+    dist = csgraph.dijkstra(forest, directed=False, indices=roots, min_only=True)
+    flip = np.round(dist).astype(np.int64) % 2 == 1  # odd number of same-direction edges
+    out = faces.copy()
+    out[flip] = out[flip][:, ::-1]
+    return out
+
+
+def clean_mesh(vertices: np.ndarray, faces: np.ndarray):
+    """Merge duplicate vertices, drop degenerate and duplicate faces and unused vertices, fix the
+    winding consistently. ``vertices (k, 3)``, ``faces (t, 3)`` → cleaned copies."""
+    import trimesh
+
+    mesh = trimesh.Trimesh(vertices=vertices, faces=faces, process=True)  # merges vertices
+    diag = float(np.linalg.norm(np.ptp(mesh.vertices, axis=0))) if len(mesh.vertices) else 0.0
+    keep = mesh.nondegenerate_faces(height=DEGENERATE_HEIGHT * diag) & mesh.unique_faces()
+    mesh.update_faces(keep)
+    mesh.remove_unreferenced_vertices()
+    return (np.ascontiguousarray(mesh.vertices, dtype=np.float64),
+            np.ascontiguousarray(consistent_winding(mesh.faces), dtype=np.int64))
+
+
+def load_mesh(path: str | Path) -> ReferenceMesh:
+    """Read a reference triangle mesh (OBJ, PLY, STL, OFF), cleaned as in :func:`clean_mesh`.
+
+    DgpcError (one line, naming the file): missing or unreadable file, not a mesh, no faces,
+    non-finite coordinates, fewer than 2 faces after cleaning.
+    """
+    path = Path(path)
+    fmt = path.suffix.lower().lstrip(".")
+    if fmt not in FORMATS:
+        raise DgpcError(f"unsupported mesh format '{path.suffix}' (use OBJ, PLY, STL or OFF)",
+                        source=path)
+    data = _read(path)
+    vertices, faces = _parse(data, fmt, path)
+    if len(faces) == 0 or vertices.ndim != 2 or vertices.shape[1] != 3:
+        raise DgpcError("not a surface mesh: no faces", source=path)
+    bad = np.flatnonzero(~np.isfinite(vertices).all(axis=1))
+    if bad.size:
+        raise DgpcError(f"vertex {int(bad[0]) + 1} has a non-finite coordinate "
+                        f"({bad.size} such vertices)", source=path)
+    if faces.min() < 0 or faces.max() >= len(vertices):
+        raise DgpcError("a face refers to a vertex that does not exist", source=path)
+    n_raw = len(faces)
+    vertices, faces = clean_mesh(vertices, faces)
+    if len(faces) < 2:
+        raise DgpcError(f"needs at least 2 non-degenerate faces, has {len(faces)} "
+                        f"(of {n_raw} before cleaning)", source=path)
+    log.info("%s: %d vertices, %d faces (%d dropped)", path, len(vertices), len(faces),
+             n_raw - len(faces))
+    vertices.setflags(write=False)
+    faces.setflags(write=False)
+    return ReferenceMesh(vertices=vertices, faces=faces, path=path,
+                         sha256=hashlib.sha256(data).hexdigest())
+
+
+def write_mesh_obj(path: str | Path, vertices: np.ndarray, faces: np.ndarray) -> bytes:
+    """Deterministic OBJ bytes of a triangle mesh (``repr`` floats, 1-based faces); the object is
+    named after ``path``'s stem. ``vertices (k, 3)``, ``faces (t, 3)``. Nothing is written."""
+    from .. import __version__
+
+    vertices = np.asarray(vertices, dtype=np.float64)
+    faces = np.asarray(faces, dtype=np.int64)
+    if vertices.ndim != 2 or vertices.shape[1] != 3 or faces.ndim != 2 or faces.shape[1] != 3:
+        raise ValueError(f"expected vertices (k, 3) and faces (t, 3), got {vertices.shape} "
+                         f"and {faces.shape}")
+    if faces.size and (faces.min() < 0 or faces.max() >= len(vertices)):
+        raise ValueError("a face refers to a vertex that does not exist")
+    lines = [f"# dgpc {__version__}", f"o {Path(path).stem or 'mesh'}"]
+    lines += [f"v {x!r} {y!r} {z!r}" for x, y, z in vertices.tolist()]
+    lines += [f"f {a} {b} {c}" for a, b, c in (faces + 1).tolist()]
+    return ("\n".join(lines) + "\n").encode("utf-8")

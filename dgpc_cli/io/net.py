@@ -1,0 +1,100 @@
+"""The ``net`` artifact: STEM.json (envelope) + STEM.obj (the m×n net as quads), SPEC §3."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import DgpcError
+from .artifact import artifact_paths, dumps_json, load_envelope, make_envelope, sha256_bytes
+from .atomic import write_files
+from .jsonable import load_schema, validate
+from .obj import format_net_obj, parse_net_obj
+
+KIND = "net"
+
+
+@dataclass
+class NetArtifact:
+    """A net ``f (m, n, 3)`` with the envelope fields of its artifact (SPEC §3).
+
+    ``data`` holds what the OBJ cannot (``shape``, ``geodesic_family``, ``obj``, ``obj_sha256``
+    are filled in by :func:`write_net`; callers add e.g. ``surface``, ``handles``, ``reference``).
+    """
+
+    f: np.ndarray
+    parameters: dict = field(default_factory=dict)
+    inputs: dict = field(default_factory=dict)
+    data: dict = field(default_factory=dict)
+    metrics: dict = field(default_factory=dict)
+    status: dict = field(default_factory=dict)
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """Grid size ``(m, n)``."""
+        return int(self.f.shape[0]), int(self.f.shape[1])
+
+
+def check_net_array(f, source) -> np.ndarray:
+    """``f`` as a float64 ``(m, n, 3)`` array with m, n ≥ 2 and finite; DgpcError otherwise."""
+    f = np.asarray(f, dtype=np.float64)
+    if f.ndim != 3 or f.shape[2] != 3 or f.shape[0] < 2 or f.shape[1] < 2:
+        raise DgpcError(f"f: a net is an (m, n, 3) array with m, n >= 2, got shape "
+                        f"{tuple(f.shape)}", source=source)
+    bad = np.argwhere(~np.isfinite(f).all(axis=2))
+    if bad.size:
+        u, v = (int(i) for i in bad[0])
+        raise DgpcError(f"f: vertex (u, v) = ({u}, {v}) has a non-finite coordinate",
+                        source=source)
+    return f
+
+
+def net_files(stem: str | Path, net: NetArtifact) -> dict[Path, bytes]:
+    """The bytes of ``STEM.json`` and ``STEM.obj`` (nothing written), checked against
+    ``net.schema.json``; to be written with other files in one :func:`write_files` call."""
+    json_path, obj_path = artifact_paths(stem)
+    f = check_net_array(net.f, json_path)
+    m, n = f.shape[:2]
+    obj_bytes = format_net_obj(f)
+    data = {**net.data, "shape": [m, n], "geodesic_family": "u", "obj": obj_path.name,
+            "obj_sha256": sha256_bytes(obj_bytes)}
+    doc = make_envelope(KIND, inputs=net.inputs, parameters=net.parameters, data=data,
+                        metrics=net.metrics, status=net.status)
+    json_bytes = dumps_json(doc)
+    validate(json.loads(json_bytes), load_schema(KIND), json_path)
+    return {json_path: json_bytes, obj_path: obj_bytes}
+
+
+def write_net(stem: str | Path, net: NetArtifact, *, force: bool = False) -> tuple[Path, Path]:
+    """Write ``STEM.json`` + ``STEM.obj`` atomically; returns their paths.
+
+    The envelope is checked against ``net.schema.json`` before anything is written.
+    """
+    files = net_files(stem, net)
+    write_files(files, force=force)
+    json_path, obj_path = files
+    return json_path, obj_path
+
+
+def read_net(stem: str | Path) -> NetArtifact:
+    """Read and validate a net artifact (envelope, OBJ hash, vertex count, finiteness)."""
+    json_path, obj_path = artifact_paths(stem)
+    doc = load_envelope(json_path, KIND)
+    data = doc["data"]
+    m, n = data["shape"]
+    try:
+        obj_bytes = obj_path.read_bytes()
+    except FileNotFoundError:
+        raise DgpcError(f"missing; {json_path.name} needs it beside it (data.obj)",
+                        source=obj_path) from None
+    except OSError as e:
+        raise DgpcError(f"cannot read: {e.strerror or e}", source=obj_path) from None
+    if sha256_bytes(obj_bytes) != data["obj_sha256"]:
+        raise DgpcError(f"{obj_path.name} does not match {json_path.name} (edited separately?): "
+                        f"its sha256 differs from data.obj_sha256", source=obj_path)
+    f = parse_net_obj(obj_bytes, m, n, obj_path)
+    return NetArtifact(f=f, parameters=doc["parameters"], inputs=doc["inputs"], data=data,
+                       metrics=doc["metrics"], status=doc["status"])

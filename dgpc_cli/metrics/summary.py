@@ -1,0 +1,92 @@
+"""All metrics of a net in one JSON-able dict (SPEC §7), for artifacts and ``dgpc inspect``."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from dgpc_cli.metrics.clairaut import as_axis, clairaut
+from dgpc_cli.metrics.curvature import gaussian_curvature
+from dgpc_cli.metrics.frames import as_grid
+from dgpc_cli.metrics.hausdorff import hausdorff
+from dgpc_cli.metrics.residuals import (
+    arclength_spread,
+    edge_length_stats,
+    finite_max,
+    gpc_angle_defect,
+    jacobi_residual,
+    orthogonality,
+    ratio_spread,
+    strip_width_spread,
+)
+from dgpc_cli.metrics.strain import strain
+
+__all__ = ["jsonable", "net_metrics"]
+
+
+def jsonable(value):
+    """Recursively convert numpy scalars/arrays, tuples and non-finite floats (→ None) into
+    plain JSON types (dict with str keys, list, int, float, bool, str, None)."""
+    if isinstance(value, dict):
+        return {str(k): jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [jsonable(v) for v in (value.tolist() if isinstance(value, np.ndarray) else value)]
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        value = float(value)
+        return value if math.isfinite(value) else None
+    return value
+
+
+def _stats(x: np.ndarray) -> dict:
+    x = np.asarray(x, dtype=float)
+    x = x[np.isfinite(x)]
+    if not x.size:
+        return {"min": None, "max": None, "mean": None}
+    return {"min": float(x.min()), "max": float(x.max()), "mean": float(x.mean())}
+
+
+def net_metrics(f, *, axis=None, against=None, reference=None) -> dict:
+    """Metrics of a net ``f (m, n, 3)`` from its vertex positions (SPEC §7).
+
+    Always::
+
+        shape [m, n]; gpc_angle_defect_max (rad, Prop. 2.7 (ii)); orthogonality_max
+        (|⟨T^u, T^v⟩|, Lemma 2.5); arclength_spread_max (§5.1); strip_width_spread_max ((7));
+        ratio_spread_max ((5)); jacobi_residual_max (|(2)| / mean v-edge);
+        edges {min, mean, max, min_ratio, folded}; gaussian_curvature {min, max, mean} ((1))
+
+    and, when given, ``clairaut`` (axis: ``(point, direction)`` or ``"px,py,pz,dx,dy,dz"``;
+    equation (9), see :func:`~dgpc_cli.metrics.clairaut.clairaut`), ``strain`` {max, mean}
+    against the reference net ``against (m, n, 3)`` (§6.1), ``hausdorff`` to ``reference`` =
+    ``(vertices (k, 3), faces (l, 3))`` (see :func:`~dgpc_cli.metrics.hausdorff.hausdorff`).
+    Values are plain floats/ints/lists; undefined values are None, never NaN.
+    """
+    f = as_grid(f)
+    m, n, _ = f.shape
+    out = {
+        "shape": [m, n],
+        "gpc_angle_defect_max": finite_max(gpc_angle_defect(f)),
+        "orthogonality_max": finite_max(orthogonality(f)),
+        "arclength_spread_max": finite_max(arclength_spread(f)),
+        "strip_width_spread_max": finite_max(strip_width_spread(f)),
+        "ratio_spread_max": finite_max(ratio_spread(f)),
+        "jacobi_residual_max": finite_max(jacobi_residual(f), absolute=True),
+        "edges": edge_length_stats(f),
+        "gaussian_curvature": _stats(gaussian_curvature(f)),
+    }
+    if axis is not None:
+        out["clairaut"] = clairaut(f, as_axis(axis))
+    if against is not None:
+        out["strain"] = strain(f, against)[1]
+    if reference is not None:
+        try:
+            vertices, faces = reference
+        except (TypeError, ValueError):
+            raise ValueError("reference must be a (vertices, faces) pair") from None
+        out["hausdorff"] = hausdorff(f, vertices, faces)
+    return jsonable(out)

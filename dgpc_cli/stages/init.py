@@ -1,0 +1,49 @@
+"""``dgpc init``: a sensible initial net (SPEC §5). Here: analytic surfaces of revolution."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from dgpc_cli.io.mesh import write_mesh_obj
+from dgpc_cli.io.net import NetArtifact
+from dgpc_cli.surfaces.profiles import BUILTIN_PROFILES, profile_from_spec
+from dgpc_cli.surfaces.revolution import revolution_mesh, revolution_net, surface_record
+
+
+@dataclass
+class InitResult:
+    """The new net and, optionally, the bytes of its reference mesh OBJ."""
+
+    net: NetArtifact
+    reference_obj: bytes | None = None
+
+
+def init_revolution(profile: str, rows: int, cols: int, *, span_deg: float = 180.0,
+                    twist: float = 0.0, reference_out: Path | None = None,
+                    around: int = 360) -> InitResult:
+    """An ``rows × cols`` net on a surface of revolution, meridians as u-lines (Fig. 3, 11).
+
+    ``profile`` is a built-in name or a CSV file with header ``r,h``. With ``reference_out`` the
+    triangulated surface (``around`` segments per turn, the profile resampled finely) is
+    returned too, to be written beside the net; the net's ``data.reference`` names it.
+    """
+    prof = profile_from_spec(profile)
+    f = revolution_net(prof, rows, cols, span_deg=span_deg, twist=twist)
+    parameters = {"surface": "revolution", "profile": profile, "rows": rows, "cols": cols,
+                  "span_deg": span_deg, "twist": twist,
+                  "reference_out": str(reference_out) if reference_out else None}
+    inputs = {}
+    if profile not in BUILTIN_PROFILES:
+        inputs["profile"] = str(profile)  # resolved to path + sha256 by the caller
+    data = {"surface": surface_record(prof, span_deg, twist)}
+    reference_obj = None
+    if reference_out is not None:
+        vertices, faces = revolution_mesh(prof, around=around)
+        reference_obj = write_mesh_obj(reference_out, vertices, faces)
+        data["reference"] = {"path": str(reference_out)}
+    net = NetArtifact(f=np.asarray(f, dtype=float), parameters=parameters, inputs=inputs,
+                      data=data)
+    return InitResult(net=net, reference_obj=reference_obj)

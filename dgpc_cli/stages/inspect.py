@@ -1,0 +1,98 @@
+"""``dgpc inspect``: the metrics of SPEC §7 for an artifact, recomputed from its geometry."""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+import numpy as np
+
+from dgpc_cli.core.layout import NetLayout
+from dgpc_cli.core.problem import Problem, constraint_error, mean_edge_length
+from dgpc_cli.core.solver import parse_weight
+from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.artifact import resolve_input, sha256_file
+from dgpc_cli.io.net import NetArtifact
+from dgpc_cli.metrics.summary import net_metrics
+from dgpc_cli.stages.modes import GPC_ONLY
+
+log = logging.getLogger(__name__)
+
+
+def recorded_axis(net: NetArtifact):
+    """The axis ``(point, direction)`` a net of revolution records in ``data.surface``."""
+    axis = net.data.get("surface", {}).get("axis")
+    if not axis:
+        return None
+    return np.asarray(axis["point"], float), np.asarray(axis["direction"], float)
+
+
+def recorded_reference(net: NetArtifact, json_path: Path):
+    """The reference mesh recorded in ``data.reference``, if the file is there unchanged."""
+    from dgpc_cli.io.mesh import load_mesh
+
+    record = net.data.get("reference")
+    if not record:
+        return None
+    path = resolve_input(record, json_path)
+    if not path.is_file():
+        log.warning("%s: recorded reference %s is missing; no Hausdorff distance", json_path,
+                    record["path"])
+        return None
+    if record.get("sha256") and sha256_file(path) != record["sha256"]:
+        raise DgpcError(f"data.reference: {record['path']} changed since the net was written "
+                        "(sha256 differs)", source=json_path)
+    return load_mesh(path)
+
+
+def recorded_weights(net: NetArtifact) -> dict:
+    """The weights of the optimization that made the net, or gpc only for an initial net."""
+    weights = net.parameters.get("weights")
+    if not weights:
+        return dict(GPC_ONLY)
+    return {name: parse_weight(f"{name}={value}")[1] for name, value in weights.items()}
+
+
+def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact | None = None):
+    """Residual norm per term and the paper's R of the net under its recorded weights.
+
+    Data-bound terms count where their data is at hand: handles from ``data.handles``,
+    approximation from the reference, isometry from ``against``.
+    """
+    from dgpc_cli.core.reference import ReferenceSurface
+
+    f = net.f
+    m, n = net.shape
+    weights = recorded_weights(net)
+    handles = net.data.get("handles")
+    problem = Problem(
+        NetLayout(m, n), mean_edge_length(f), weights,
+        w0=(np.linalg.norm(NetLayout(m, n).edge_vectors(against.f), axis=1)
+            if against is not None else None),
+        handle_ids=np.asarray(handles["ids"], dtype=np.int64) if handles else None,
+        handle_targets=np.asarray(handles["targets"], dtype=float) if handles else None,
+        reference=ReferenceSurface.from_mesh(reference) if reference is not None else None,
+    )
+    norms = problem.residual_norms(f)
+    return norms, constraint_error(norms, {k: weights[k] for k in norms})
+
+
+def summarize(net: NetArtifact, *, axis=None, mesh=None,
+              against: NetArtifact | None = None) -> dict:
+    """All metrics of a net (SPEC §7) as a JSON-able dict; ``mesh`` a ReferenceMesh or None."""
+    axis = axis if axis is not None else recorded_axis(net)
+    metrics = net_metrics(net.f, axis=axis, against=against.f if against is not None else None,
+                          reference=(mesh.vertices, mesh.faces) if mesh is not None else None)
+    norms, R = constraint_residuals(net, mesh, against)
+    metrics["R"] = R
+    metrics["residuals"] = norms
+    return metrics
+
+
+def inspect_net(net: NetArtifact, json_path: Path, *, axis=None,
+                against: NetArtifact | None = None) -> dict:
+    """Metrics of a net artifact read from ``json_path``, with its recorded reference."""
+    if against is not None and against.shape != net.shape:
+        raise DgpcError(f"--against: grid {against.shape[0]}×{against.shape[1]} differs from "
+                        f"{net.shape[0]}×{net.shape[1]}", source="--against")
+    return summarize(net, axis=axis, mesh=recorded_reference(net, json_path), against=against)

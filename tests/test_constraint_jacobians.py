@@ -1,0 +1,88 @@
+"""Every constraint term's Jacobian against central finite differences (SPEC §4)."""
+
+import numpy as np
+import pytest
+
+from dgpc_cli.core.constraints import TERMS
+from dgpc_cli.core.layout import NetLayout
+
+
+class Sphere:
+    """Exact closest points on a sphere: ⟨f − p, n⟩ = ‖f − c‖ − r, whose gradient is n."""
+
+    def __init__(self, center, radius):
+        self.c, self.r = np.asarray(center, float), float(radius)
+
+    def closest(self, q):
+        d = q - self.c
+        n = d / np.linalg.norm(d, axis=1, keepdims=True)
+        return self.c + self.r * n, n
+
+
+def _random_state(layout, rng):
+    """A generic point in variable space: positions, non-unit e and w off the edge lengths."""
+    u, v = np.meshgrid(np.linspace(0, 1, layout.m), np.linspace(0, 1.3, layout.n), indexing="ij")
+    f = np.stack([u, v, 0.3 * np.sin(2 * u + v)], axis=-1) + 0.05 * rng.standard_normal(
+        (layout.m, layout.n, 3))
+    x = layout.pack(f)
+    return x + 0.05 * rng.standard_normal(x.size)
+
+
+def _bound(name, layout, rng):
+    if name == "isometry":
+        w0 = rng.uniform(0.5, 1.5, layout.n_edges)
+        return lambda x: TERMS[name](x, layout, w0=w0)
+    if name == "handles":
+        ids, targets = np.array([0, 7, layout.n_vertices - 1]), rng.standard_normal((3, 3))
+        return lambda x: TERMS[name](x, layout, ids, targets)
+    if name == "approximation":
+        return lambda x: TERMS[name](x, layout, Sphere([0.2, 0.4, -3.0], 2.5))
+    return lambda x: TERMS[name](x, layout)
+
+
+@pytest.mark.parametrize("name", sorted(TERMS))
+def test_jacobian_matches_finite_differences(name):
+    rng = np.random.default_rng(7)
+    layout = NetLayout(5, 4)
+    term = _bound(name, layout, rng)
+    x = _random_state(layout, rng)
+    phi, J = term(x)
+    assert J.shape == (phi.size, layout.size)
+    J = J.toarray()
+    h = 1e-6
+    fd = np.empty_like(J)
+    for c in range(layout.size):
+        dx = np.zeros(layout.size)
+        dx[c] = h
+        fd[:, c] = (term(x + dx)[0] - term(x - dx)[0]) / (2 * h)
+    scale = max(1.0, np.abs(J).max())
+    assert np.abs(J - fd).max() <= 1e-7 * scale, name
+    assert np.abs(J).max() > 0, f"{name}: Jacobian is identically zero"
+
+
+@pytest.mark.parametrize("name", sorted(TERMS))
+def test_jacobian_pattern_does_not_depend_on_values(name):
+    rng = np.random.default_rng(3)
+    layout = NetLayout(4, 5)
+    term = _bound(name, layout, rng)
+    _, J1 = term(_random_state(layout, rng))
+    _, J2 = term(np.zeros(layout.size) + 1e-3)
+    assert np.array_equal(J1.row, J2.row) and np.array_equal(J1.col, J2.col)
+
+
+def test_equation_counts_follow_the_paper():
+    m, n = 7, 6
+    layout = NetLayout(m, n)
+    x = layout.pack(np.random.default_rng(0).standard_normal((m, n, 3)))
+    E = layout.n_edges
+    counts = {name: TERMS[name](x, layout)[0].size for name in
+              ("net", "gpc", "arclength", "equal_strip_width", "developable", "fairness",
+               "ratio_revolution")}
+    assert counts["net"] == 4 * E                          # 8|E| in the paper's doubled layout
+    assert counts["gpc"] == 2 * (m * n - n - 2 * m + 2)    # paper's table
+    assert counts["arclength"] == n * (m - 2)              # 2n(m-2) with w_ij, w_ji
+    assert counts["equal_strip_width"] == m * (n - 2)      # 2m(n-2) with w_ij, w_ji
+    assert counts["developable"] == (n - 1) * (m - 2)
+    assert counts["ratio_revolution"] == (m - 1) * (n - 2)
+    assert counts["fairness"] == 3 * ((m - 2) * n + m * (n - 2))
+    assert NetLayout(21, 21).paper_size == 8043
