@@ -27,7 +27,7 @@ log = logging.getLogger(__name__)
 #: Default regularization ε of the normal equations, for a net scaled to mean edge length 1.
 EPSILON = 1e-3
 #: Bounds and factors of the Levenberg–Marquardt control of ε².
-MU_MIN, MU_MAX, MU_DOWN, MU_UP = 1e-10, 1e4, 1 / 3, 4.0
+MU_MIN, MU_MAX, MU_DOWN, MU_UP = 1e-6, 1e4, 1 / 3, 4.0
 
 
 @dataclass(frozen=True)
@@ -194,9 +194,12 @@ def guided_projection(
             workspace = _Workspace(rows, cols, phi.size, x.size, backend)
         pattern = workspace.pattern
         g = pattern.gradient(vals, row_w, phi)
-        dx = workspace.solver.solve(pattern.values(vals, row_w, mu), -g)
+        solver = workspace.solver
+        solver.factorize(pattern.values(vals, row_w, mu))
+        dx = solver.solve(-g)
         trial = _evaluate(terms, x + dx)
-        if _objective(weights, trial[0]) < obj or not settled:
+        trial_obj = _objective(weights, trial[0])
+        if trial_obj < obj:
             x = x + dx
             phis, jacs = trial
             mu = max(mu * MU_DOWN, MU_MIN)

@@ -6,9 +6,14 @@
   factorizes anew every iteration. The fallback where MKL is absent.
 * ``spsolve``  — a fresh ``scipy.sparse.linalg.spsolve`` every iteration: what the authors' code
   does; the reference of ``make bench``.
+
+Every backend has ``factorize(data)`` (the values of A in the fixed pattern) and ``solve(b)``
+(with the last factorization).
 """
 
 from __future__ import annotations
+
+from functools import cache
 
 import numpy as np
 import scipy.sparse.linalg as spla
@@ -31,15 +36,17 @@ class PardisoSPD:
         self._solver.set_phase(phase)
         return self._solver._call_pardiso(self._A, b)
 
-    def solve(self, data: np.ndarray, b: np.ndarray) -> np.ndarray:
+    def factorize(self, data: np.ndarray) -> None:
         self._A.data[:] = data
         self._solver._check_A(self._A)
-        rhs = np.asfortranarray(b.reshape(-1, 1))
+        rhs = np.zeros((self._A.shape[0], 1), order="F")
         if not self._analysed:
             self._phase(11, rhs)
             self._analysed = True
         self._phase(22, rhs)
-        return self._phase(33, rhs).ravel()
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        return self._phase(33, np.asfortranarray(b.reshape(-1, 1))).ravel()
 
     def __del__(self):
         try:
@@ -54,14 +61,16 @@ class CholmodSPD:
     def __init__(self, pattern: NormalMatrix):
         self._pattern = pattern
 
-    def solve(self, data: np.ndarray, b: np.ndarray) -> np.ndarray:
+    def factorize(self, data: np.ndarray) -> None:
         from cholespy import CholeskySolverD, MatrixType
 
         A = self._pattern.full(data)
-        chol = CholeskySolverD(A.shape[0], A.indptr.astype(np.int32),
-                               A.indices.astype(np.int32), A.data, MatrixType.CSC)
+        self._chol = CholeskySolverD(A.shape[0], A.indptr.astype(np.int32),
+                                     A.indices.astype(np.int32), A.data, MatrixType.CSC)
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
         x = np.zeros_like(b)
-        chol.solve(np.ascontiguousarray(b), x)
+        self._chol.solve(np.ascontiguousarray(b), x)
         return x
 
 
@@ -71,14 +80,18 @@ class ScipySpsolve:
     def __init__(self, pattern: NormalMatrix):
         self._pattern = pattern
 
-    def solve(self, data: np.ndarray, b: np.ndarray) -> np.ndarray:
-        return spla.spsolve(self._pattern.full(data), b)
+    def factorize(self, data: np.ndarray) -> None:
+        self._A = self._pattern.full(data)
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        return spla.spsolve(self._A, b)
 
 
 BACKENDS = {"pardiso": PardisoSPD, "cholmod": CholmodSPD, "spsolve": ScipySpsolve}
 
 
-def available_backends() -> list[str]:
+@cache
+def available_backends() -> tuple[str, ...]:
     names = []
     try:
         from pypardiso.pardiso_wrapper import PyPardisoSolver
@@ -94,7 +107,7 @@ def available_backends() -> list[str]:
     except ImportError:
         pass
     names.append("spsolve")
-    return names
+    return tuple(names)
 
 
 def make_solver(pattern: NormalMatrix, backend: str = "auto"):
