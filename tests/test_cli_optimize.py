@@ -4,8 +4,8 @@ import json
 
 import numpy as np
 import pytest
-
 from cli_helpers import add_noise, dgpc, metrics
+
 from dgpc_cli.core.layout import NetLayout
 from dgpc_cli.io.net import read_net
 from dgpc_cli.surfaces.minding import minding_bend
@@ -42,7 +42,8 @@ def test_clairaut_on_a_twisted_bowling_pin(tmp_path):
     assert c["max_relative_mad"] <= 0.002                      # SPEC §8: ≤ 0.2 % at 41 rows
     assert m["edges"]["min_ratio"] >= 0.1                      # not folded
     assert m["orthogonality_max"] <= 1e-6
-    assert m["hausdorff"]["net_to_reference_max"] <= 1e-6 * m["hausdorff"]["diagonal"]
+    assert m["residuals"]["approximation"] <= 1e-8          # vertices on the reference
+    assert m["hausdorff"]["net_to_reference_max"] <= 1e-3 * m["hausdorff"]["diagonal"]
     # the initial, twisted net is far from geodesic: the test can fail
     assert metrics(s0)["clairaut"]["max_relative_mad"] > 0.01
 
@@ -62,15 +63,7 @@ def test_isometric_deformation_of_a_half_sphere(tmp_path):
     handles = tmp_path / "handles.json"
     handles.write_text(json.dumps({"handles": [{"index": list(i), "target": g[i].tolist()}
                                                for i in idx]}))
-    result = dgpc("optimize", s0, "--mode", "isometric", "--handles", handles, "--steps", 5,
-                  "-o", s1, expect=None) if False else None
-    del result
-    from click.testing import CliRunner
-
-    from dgpc_cli.cli.main import cli
-    res = CliRunner().invoke(cli, ["optimize", str(s0), "--mode", "isometric", "--handles",
-                                   str(handles), "--steps", "5", "-o", str(s1)])
-    assert res.exit_code in (0, 3), res.stderr
+    dgpc("optimize", s0, "--mode", "isometric", "--handles", handles, "--steps", 5, "-o", s1)
     m = metrics(s1, "--against", s0)
     out = read_net(s1).f
     assert max(np.linalg.norm(out[i] - g[i]) for i in idx) <= 1e-6

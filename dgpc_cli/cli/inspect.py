@@ -6,7 +6,9 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.io.artifact import artifact_paths, dumps_json
+from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.artifact import KINDS, artifact_paths, dumps_json
+from dgpc_cli.io.jsonable import read_json
 from dgpc_cli.io.net import read_net
 from dgpc_cli.metrics.clairaut import parse_axis
 from dgpc_cli.stages.inspect import inspect_net
@@ -21,6 +23,26 @@ def _axis(ctx, param, value):
         raise click.BadParameter(str(err), ctx=ctx, param=param) from None
 
 
+def _inspect_net(json_path: Path, axis=None, against=None) -> dict:
+    net = read_net(json_path)
+    reference = read_net(against) if against is not None else None
+    return inspect_net(net, json_path, axis=axis, against=reference)
+
+
+#: One inspector per artifact kind: ``inspector(json_path, axis=..., against=...) -> dict``.
+#: Stages register theirs here.
+INSPECTORS = {"net": _inspect_net}
+
+
+def artifact_kind(json_path: Path) -> str:
+    doc = read_json(json_path)
+    kind = doc.get("kind") if isinstance(doc, dict) else None
+    if kind not in KINDS:
+        raise DgpcError(f"kind: {kind!r} is not a dgpc artifact kind ({', '.join(KINDS)})",
+                        source=json_path)
+    return kind
+
+
 @click.command(short_help="Print an artifact's metrics as JSON.")
 @click.argument("stem", type=click.Path(path_type=Path))
 @click.option("--axis", callback=_axis, metavar="px,py,pz,dx,dy,dz",
@@ -29,14 +51,15 @@ def _axis(ctx, param, value):
 @click.option("--against", type=click.Path(path_type=Path), metavar="STEM0",
               help="Reference net for the strain (same grid).")
 def inspect(stem, axis, against):
-    """Print the metrics of the net STEM (SPEC §7) as JSON on stdout.
+    """Print the metrics of the artifact STEM (SPEC §7) as JSON on stdout.
 
-    R (the paper's constraint error at mean edge length 1), geometric residuals, Clairaut
-    (with an axis), strain (with --against), Hausdorff distance (when the net records a
+    For a net: R (the paper's constraint error at mean edge length 1), geometric residuals,
+    Clairaut (with an axis), strain (with --against), Hausdorff distance (when the net records a
     reference mesh that is still there).
     """
     json_path, _ = artifact_paths(stem)
-    net = read_net(stem)
-    reference = read_net(against) if against is not None else None
-    metrics = inspect_net(net, json_path, axis=axis, against=reference)
+    kind = artifact_kind(json_path)
+    if kind not in INSPECTORS:
+        raise DgpcError(f"inspecting '{kind}' artifacts is not supported yet", source=json_path)
+    metrics = INSPECTORS[kind](json_path, axis=axis, against=against)
     click.echo(dumps_json(metrics).decode(), nl=False)

@@ -126,8 +126,8 @@ def clairaut(f, axis) -> dict:
 
     max_mad = fmax(mad)
     return {
-        "per_geodesic": {"v": list(range(1, n - 1)), "mean": _none_if_nan(mean), "mad": _none_if_nan(mad),
-                         "relative_mad": _none_if_nan(rel)},
+        "per_geodesic": {"v": list(range(1, n - 1)), "mean": _none_if_nan(mean),
+                         "mad": _none_if_nan(mad), "relative_mad": _none_if_nan(rel)},
         "max_relative_mad": fmax(rel),
         "max_mad": max_mad,
         "max_mad_over_radius": (max_mad / radius if max_mad is not None and radius > 0

@@ -21,7 +21,9 @@ def gpc_stencil(layout):
 
 
 def gpc(x, layout):
-    """Residuals of equation (6): ``⟨e_ij, e_ik⟩ − ⟨e_im, e_ij⟩ = 0``, ``⟨e_il, e_ik⟩ − ⟨e_im, e_il⟩ = 0``.
+    """Residuals of the angle condition, equation (6).
+
+    ``⟨e_ij, e_ik⟩ − ⟨e_im, e_ij⟩ = 0`` and ``⟨e_il, e_ik⟩ − ⟨e_im, e_il⟩ = 0``.
 
     With one unit vector per edge, at a vertex f with u-edges e1 = e_u, e3 = −e_u(ū) and v-edges
     e2 = e_v, e4 = −e_v(v̄) both equations read ``⟨e_u, e_v + e_v(v̄)⟩ = 0``: each u-edge is

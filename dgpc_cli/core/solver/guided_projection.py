@@ -27,7 +27,7 @@ log = logging.getLogger(__name__)
 #: Default regularization ε of the normal equations, for a net scaled to mean edge length 1.
 EPSILON = 1e-3
 #: Bounds and factors of the Levenberg–Marquardt control of ε².
-MU_MIN, MU_MAX, MU_DOWN, MU_UP = 1e-6, 1e4, 1 / 3, 4.0
+MU_MIN, MU_MAX, MU_DOWN, MU_UP = 1e-10, 1e4, 1 / 3, 4.0
 
 
 @dataclass(frozen=True)
