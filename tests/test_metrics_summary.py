@@ -46,7 +46,7 @@ def test_optional_metrics():
     n = f.shape[1]
     res = net_metrics(noisy, axis="0,0,0,0,0,1", against=f, reference=(v, faces))
     json.dumps(res, allow_nan=False)
-    assert set(res) == BASE_KEYS | {"clairaut", "strain", "hausdorff"}
+    assert set(res) == BASE_KEYS | {"clairaut", "strain", "hausdorff", "coverage"}
     assert res["gpc_angle_defect_max"] > 1e-4
     assert set(res["strain"]) == {"max", "mean"} and res["strain"]["max"] > 1e-4
     assert len(res["clairaut"]["per_geodesic"]["mean"]) == n - 2

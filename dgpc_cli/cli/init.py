@@ -1,4 +1,5 @@
-"""``dgpc init``: an initial net on an analytic surface (SPEC §5)."""
+"""``dgpc init``: an initial net on an analytic surface, on a reference mesh, or imported from
+a quad net (SPEC §5)."""
 
 from __future__ import annotations
 
@@ -7,6 +8,7 @@ from pathlib import Path
 import click
 
 from dgpc_cli.cli.options import check_writable, force_opt, output_opt
+from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths, file_input, relative_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import net_files
@@ -15,45 +17,138 @@ from dgpc_cli.stages.inspect import summarize
 from dgpc_cli.surfaces.profiles import describe_builtins
 
 
+def parse_direction(text: str | None):
+    """``"x,y,z"`` → three floats, not all zero; DgpcError naming --direction otherwise."""
+    if text is None:
+        return None
+    try:
+        d = [float(p) for p in text.split(",")]
+    except ValueError:
+        d = []
+    if len(d) != 3 or not all(abs(x) < float("inf") for x in d) or not any(d):
+        raise DgpcError(f"{text!r} is not a direction: give three numbers x,y,z, not all zero",
+                        source="--direction")
+    return d
+
+
+def _mesh_net(reference, method, direction, rows, cols, spacing, largest_component):
+    from dgpc_cli.io.mesh import load_mesh
+    from dgpc_cli.stages.init_mesh import init_geodesic, init_project
+
+    mesh = load_mesh(reference, pieces="largest" if largest_component else "one")
+    if method == "geodesic":
+        net = init_geodesic(mesh, direction=direction, rows=rows, cols=cols, spacing=spacing)
+    else:
+        net = init_project(mesh, direction=direction, rows=rows, cols=cols, spacing=spacing)
+    net.parameters["largest_component"] = largest_component
+    return net, mesh
+
+
 @click.command(short_help="Make an initial net.",
                epilog="Built-in profiles:\n\n\b\n" + describe_builtins())
-@click.option("--surface", type=click.Choice(["revolution"]), required=True,
+@click.argument("reference", required=False, type=click.Path(dir_okay=False, path_type=Path))
+@click.option("--surface", type=click.Choice(["revolution"]),
               help="Analytic surface: 'revolution' (profile revolved about the z axis).")
-@click.option("--profile", required=True, metavar="NAME|FILE",
-              help="Built-in profile name, or a CSV file with header 'r,h'.")
-@click.option("--rows", "rows", type=click.IntRange(min=3), required=True,
-              help="m: vertices along the geodesics (the meridians).")
-@click.option("--cols", "cols", type=click.IntRange(min=3), required=True,
-              help="n: vertices across (along the parallels).")
+@click.option("--profile", metavar="NAME|FILE",
+              help="With --surface: built-in profile name, or a CSV file with header 'r,h'.")
+@click.option("--method", type=click.Choice(["geodesic", "project"]),
+              help="With REFERENCE (a triangle mesh, OBJ/PLY/STL/OFF): 'geodesic' traces "
+                   "geodesics orthogonally from the section of the mesh by the plane through "
+                   "its area centroid orthogonal to --direction (default direction: the "
+                   "longest principal axis); 'project' projects a planar grid onto the mesh "
+                   "along --direction (required). Both keep the largest rectangle of the grid "
+                   "that lies on the mesh. A closed mesh works: geodesics are cut at its extent "
+                   "along the direction; rays hit the side the direction points to.")
+@click.option("--direction", metavar="x,y,z",
+              help="Direction for --method: normal of the base plane (geodesic) or of the "
+                   "projection (project).")
+@click.option("--from-quads", "from_quads", type=click.Path(dir_okay=False, path_type=Path),
+              metavar="FILE.obj",
+              help="Import a regular quad net from an OBJ file: the m×n grid is detected, the "
+                   "family with the smaller gpc angle defect becomes the geodesics (u-lines). "
+                   "REFERENCE, if given, is recorded for `optimize --mode fit`.")
+@click.option("--largest-component", is_flag=True,
+              help="Keep the largest connected piece of REFERENCE instead of rejecting a mesh "
+                   "of several pieces.")
+@click.option("--rows", "rows", type=click.IntRange(min=3),
+              help="m: vertices along the geodesics (default with a mesh: square quads).")
+@click.option("--cols", "cols", type=click.IntRange(min=3),
+              help="n: vertices across the geodesics (default with a mesh: 21).")
+@click.option("--spacing", type=click.FloatRange(min=0, min_open=True),
+              help="With a mesh, instead of --cols: vertex spacing in model units (also along "
+                   "the geodesics unless --rows is given).")
 @click.option("--span", "span", type=float, default=180.0, show_default=True,
-              help="Angle covered by the v-lines, degrees (360: a full ring).")
+              help="--surface: angle covered by the v-lines, degrees (360: a full ring).")
 @click.option("--twist", type=float, default=0.0, show_default=True,
-              help="Shear T, radians: the angle of f(u, v) gets T·s(u)/s_total added, so the "
-                   "initial u-lines are not meridians (paper Fig. 11).")
+              help="--surface: shear T, radians: the angle of f(u, v) gets T·s(u)/s_total "
+                   "added, so the initial u-lines are not meridians (paper Fig. 11).")
 @click.option("--reference-out", type=click.Path(dir_okay=False, path_type=Path),
-              help="Also write the triangulated surface (OBJ), fine enough to be the "
-                   "reference for `optimize --mode fit`.")
+              help="--surface: also write the triangulated surface (OBJ), fine enough to be "
+                   "the reference for `optimize --mode fit`.")
 @output_opt
 @force_opt
-def init(surface, profile, rows, cols, span, twist, reference_out, output, force):
-    """Make an m×n net on a surface of revolution, meridians as u-lines.
+def init(reference, surface, profile, method, direction, from_quads, largest_component, rows,
+         cols, spacing, span, twist, reference_out, output, force):
+    """Make an initial m×n net (u-lines: the geodesics).
 
-    The z axis is the axis of revolution. A CSV profile is resampled by arc length.
+    \b
+    dgpc init --surface revolution --profile NAME|FILE --rows M --cols N -o STEM
+    dgpc init MESH --method geodesic [--direction x,y,z] [--rows M] [--cols N|--spacing S] -o S
+    dgpc init MESH --method project --direction x,y,z [--rows M] [--cols N|--spacing S] -o S
+    dgpc init --from-quads NET.obj [MESH] -o STEM
+
+    With --surface the z axis is the axis of revolution and a CSV profile is resampled by arc
+    length. With a mesh, the net records it (path and sha256) as the reference of
+    `optimize --mode fit`.
     """
+    sources = [s for s in (surface and "--surface", method and "--method",
+                           from_quads and "--from-quads") if s]
+    if len(sources) != 1:
+        raise click.UsageError("give one of --surface, REFERENCE with --method, or --from-quads"
+                               + (f" (got {', '.join(sources)})" if sources else ""))
+    if surface:
+        if reference is not None or spacing is not None or direction is not None:
+            raise click.UsageError("--surface takes no REFERENCE, --direction or --spacing")
+        if profile is None or rows is None or cols is None:
+            raise click.UsageError("--surface needs --profile, --rows and --cols")
+    elif method:
+        if reference is None:
+            raise click.UsageError("--method needs a REFERENCE mesh")
+        if cols is not None and spacing is not None:
+            raise click.UsageError("give --cols or --spacing, not both")
+        if method == "project" and direction is None:
+            raise click.UsageError("--method project needs --direction x,y,z")
+    if (profile or reference_out) and not surface:
+        raise click.UsageError("--profile and --reference-out go with --surface")
+    d = parse_direction(direction)
     check_writable(output, force, *([reference_out] if reference_out else []))
-    result = init_revolution(profile, rows, cols, span_deg=span, twist=twist,
-                             reference_out=reference_out)
-    net = result.net
     json_path, _ = artifact_paths(output)
     folder = json_path.resolve().parent
-    if "profile" in net.inputs:
-        net.inputs["profile"] = file_input(net.inputs["profile"], folder)
     files = {}
-    if result.reference_obj is not None:
-        record = relative_input(reference_out, folder, result.reference_obj)
-        net.data["reference"] = record
-        files[reference_out] = result.reference_obj
-    net.metrics = summarize(net)
+    mesh = None
+    if surface:
+        result = init_revolution(profile, rows, cols, span_deg=span, twist=twist,
+                                 reference_out=reference_out)
+        net = result.net
+        if "profile" in net.inputs:
+            net.inputs["profile"] = file_input(net.inputs["profile"], folder)
+        if result.reference_obj is not None:
+            net.data["reference"] = relative_input(reference_out, folder, result.reference_obj)
+            files[reference_out] = result.reference_obj
+    elif method:
+        net, mesh = _mesh_net(reference, method, d, rows, cols, spacing, largest_component)
+    else:
+        from dgpc_cli.stages.init_mesh import init_from_quads
+
+        net = init_from_quads(from_quads)
+        net.inputs["quads"] = file_input(from_quads, folder)
+        if reference is not None:
+            from dgpc_cli.io.mesh import load_mesh
+
+            mesh = load_mesh(reference, pieces="largest" if largest_component else "one")
+    if mesh is not None:
+        net.inputs["reference"] = net.data["reference"] = file_input(mesh.path, folder)
+    net.metrics = summarize(net, mesh=mesh)
     files.update(net_files(output, net))
     write_files(files, force=force)
     click.echo(str(json_path))

@@ -34,6 +34,33 @@ def _inspect_net(json_path: Path, axis=None, against=None) -> dict:
 INSPECTORS = {"net": _inspect_net}
 
 
+def _inspect_strips(json_path: Path, **_) -> dict:
+    from dgpc_cli.io.strips import read_strips
+
+    return read_strips(json_path).metrics
+
+
+def _inspect_flat(json_path: Path, **_) -> dict:
+    from dgpc_cli.io.flat import read_flat
+    from dgpc_cli.stages.unfold import flat_metrics
+
+    flat = read_flat(json_path)
+    return flat_metrics(flat.parts, flat.classes)
+
+
+INSPECTORS.update(strips=_inspect_strips, flat=_inspect_flat)
+
+
+def _inspect_mold(json_path: Path, **_) -> dict:
+    from dgpc_cli.io.mold import read_mold
+    from dgpc_cli.stages.extract_mold import inspect_mold
+
+    return inspect_mold(read_mold(json_path))
+
+
+INSPECTORS.update(mold=_inspect_mold)
+
+
 def artifact_kind(json_path: Path) -> str:
     doc = read_json(json_path)
     kind = doc.get("kind") if isinstance(doc, dict) else None

@@ -114,11 +114,40 @@ def clean_mesh(vertices: np.ndarray, faces: np.ndarray):
             np.ascontiguousarray(consistent_winding(mesh.faces), dtype=np.int64))
 
 
-def load_mesh(path: str | Path) -> ReferenceMesh:
+def face_components(faces: np.ndarray) -> np.ndarray:
+    """Label ``(t,)`` of the connected piece (faces sharing vertices) of every face."""
+    faces = np.asarray(faces, dtype=np.int64)
+    k = int(faces.max()) + 1 if faces.size else 0
+    rows = np.repeat(np.arange(len(faces)), 3)
+    incidence = sparse.coo_matrix((np.ones(rows.size), (rows, faces.ravel())),
+                                  shape=(len(faces), k)).tocsr()
+    _, labels = csgraph.connected_components(incidence @ incidence.T, directed=False)
+    return labels
+
+
+def largest_piece(vertices: np.ndarray, faces: np.ndarray):
+    """The connected piece of largest area: ``(vertices, faces, n_pieces)``, unused vertices
+    dropped."""
+    labels = face_components(faces)
+    n_pieces = int(labels.max()) + 1
+    if n_pieces == 1:
+        return vertices, faces, 1
+    tri = vertices[faces]
+    area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+    keep = labels == int(np.argmax(np.bincount(labels, weights=area)))
+    used, inverse = np.unique(faces[keep], return_inverse=True)
+    return (np.ascontiguousarray(vertices[used]),
+            np.ascontiguousarray(inverse.reshape(-1, 3).astype(np.int64)), n_pieces)
+
+
+def load_mesh(path: str | Path, *, pieces: str = "all") -> ReferenceMesh:
     """Read a reference triangle mesh (OBJ, PLY, STL, OFF), cleaned as in :func:`clean_mesh`.
 
+    ``pieces``: ``"all"`` keeps every connected piece, ``"one"`` rejects a mesh of several
+    pieces, ``"largest"`` keeps the piece of largest area (``--largest-component``).
+
     DgpcError (one line, naming the file): missing or unreadable file, not a mesh, no faces,
-    non-finite coordinates, fewer than 2 faces after cleaning.
+    non-finite coordinates, fewer than 2 faces after cleaning, several pieces (``"one"``).
     """
     path = Path(path)
     fmt = path.suffix.lower().lstrip(".")
@@ -137,6 +166,15 @@ def load_mesh(path: str | Path) -> ReferenceMesh:
         raise DgpcError("a face refers to a vertex that does not exist", source=path)
     n_raw = len(faces)
     vertices, faces = clean_mesh(vertices, faces)
+    if pieces != "all" and len(faces):
+        kept, kept_faces, n_pieces = largest_piece(vertices, faces)
+        if n_pieces > 1 and pieces == "one":
+            raise DgpcError(f"the mesh has {n_pieces} separate pieces; use "
+                            "--largest-component to keep the largest", source=path)
+        if n_pieces > 1:
+            log.info("%s: kept the largest of %d pieces (%d of %d faces)", path, n_pieces,
+                     len(kept_faces), len(faces))
+        vertices, faces = kept, kept_faces
     if len(faces) < 2:
         raise DgpcError(f"needs at least 2 non-degenerate faces, has {len(faces)} "
                         f"(of {n_raw} before cleaning)", source=path)

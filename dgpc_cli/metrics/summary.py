@@ -7,6 +7,7 @@ import math
 import numpy as np
 
 from dgpc_cli.metrics.clairaut import as_axis, clairaut
+from dgpc_cli.metrics.coverage import coverage
 from dgpc_cli.metrics.curvature import gaussian_curvature
 from dgpc_cli.metrics.frames import as_grid
 from dgpc_cli.metrics.hausdorff import hausdorff
@@ -63,7 +64,9 @@ def net_metrics(f, *, axis=None, against=None, reference=None) -> dict:
     and, when given, ``clairaut`` (axis: ``(point, direction)`` or ``"px,py,pz,dx,dy,dz"``;
     equation (9), see :func:`~dgpc_cli.metrics.clairaut.clairaut`), ``strain`` {max, mean}
     against the reference net ``against (m, n, 3)`` (§6.1), ``hausdorff`` to ``reference`` =
-    ``(vertices (k, 3), faces (l, 3))`` (see :func:`~dgpc_cli.metrics.hausdorff.hausdorff`).
+    ``(vertices (k, 3), faces (l, 3))`` (see :func:`~dgpc_cli.metrics.hausdorff.hausdorff`) and
+    ``coverage`` of it (area fraction, vertex distances; see
+    :func:`~dgpc_cli.metrics.coverage.coverage`).
     Values are plain floats/ints/lists; undefined values are None, never NaN.
     """
     f = as_grid(f)
@@ -89,4 +92,5 @@ def net_metrics(f, *, axis=None, against=None, reference=None) -> dict:
         except (TypeError, ValueError):
             raise ValueError("reference must be a (vertices, faces) pair") from None
         out["hausdorff"] = hausdorff(f, vertices, faces)
+        out["coverage"] = coverage(f, vertices, faces)
     return jsonable(out)

@@ -13,6 +13,24 @@ from __future__ import annotations
 import numpy as np
 
 
+def circumradius(d, dtheta):
+    """Radius of the parallel circle whose chords of angle ``dtheta`` have length ``d``.
+
+    Paper §4.2.2: ``r(u) = d(u) / (2 sin(Δθ/2))``; with N segments per full turn Δθ = 2π/N,
+    i.e. ``r = d / (2 sin(π/N))``. Broadcasts over ``d``.
+    """
+    return np.asarray(d, dtype=float) / (2.0 * np.sin(0.5 * np.asarray(dtheta, dtype=float)))
+
+
+def height_steps_squared(l, r):  # noqa: E741 - the paper's l(u)
+    """``x(u)² = l(u)² − (r(u+1) − r(u))²`` of paper §4.2.2 (Fig. 9 right), shape ``(m−1,)``.
+
+    ``l (m−1,)`` are the meridian segment lengths and ``r (m,)`` the radii of the parallels;
+    x(u) is the height step between the parallels u and u+1, real where the result is ≥ 0.
+    """
+    return np.asarray(l, dtype=float) ** 2 - np.diff(np.asarray(r, dtype=float)) ** 2
+
+
 def minding_bend(f: np.ndarray, lam: float) -> np.ndarray:
     """The Minding bending with factor ``lam`` of a meridian net ``f (m, n, 3)`` about the z axis.
 
@@ -26,8 +44,8 @@ def minding_bend(f: np.ndarray, lam: float) -> np.ndarray:
     theta = np.unwrap(np.arctan2(f[0, :, 1], f[0, :, 0]))
     dtheta = (theta[-1] - theta[0]) / (n - 1)
     chord = np.linalg.norm(f[1:, 0] - f[:-1, 0], axis=-1)             # l(u), (m-1,)
-    rho = r * np.sin(dtheta / 2) / np.sin(dtheta / (2 * lam))
-    x2 = chord**2 - np.diff(rho) ** 2
+    rho = circumradius(2.0 * r * np.sin(dtheta / 2), dtheta / lam)   # same chords d(u)
+    x2 = height_steps_squared(chord, rho)
     if np.any(x2 < 0):
         raise ValueError(f"λ = {lam:g} makes the height step imaginary at row "
                          f"{int(np.argmin(x2))}")

@@ -1,0 +1,98 @@
+"""``dgpc extract-mold``: the surface of revolution, mold pieces and panel-to-mold map (SPEC §6)."""
+
+from __future__ import annotations
+
+import logging
+import math
+from pathlib import Path
+
+import click
+
+from dgpc_cli.cli.options import check_writable, force_opt, output_opt
+from dgpc_cli.io.artifact import artifact_paths, file_input
+from dgpc_cli.io.atomic import write_files
+from dgpc_cli.io.mold import mold_files, mold_paths
+from dgpc_cli.io.net import read_net
+from dgpc_cli.mold.dxf import UNIT_MM
+from dgpc_cli.stages.extract_mold import (
+    DEFAULT_FLAT_TOL,
+    DEFAULT_PANEL_SIZE,
+    DEFAULT_TOL,
+    extract_mold,
+)
+
+log = logging.getLogger(__name__)
+
+
+@click.command("extract-mold", short_help="Extract the mold (surface of revolution) of nets.")
+@click.argument("nets", nargs=-1, required=True, type=click.Path(path_type=Path))
+@click.option("--segments", type=click.IntRange(min=2), default=None,
+              help="N, segments of the surface of revolution per full turn "
+                   "[default: n−1 of the first net, one full turn].")
+@click.option("--lambda", "lam", type=click.FloatRange(min=0, min_open=True), default=None,
+              help="Minding's λ (Prop. 4.3) relative to the full-turn surface: N = λ·(n−1).")
+@click.option("--panel-size", type=click.IntRange(min=1), default=DEFAULT_PANEL_SIZE,
+              show_default=True, help="K: a panel is a K×K block of net quads.")
+@click.option("--flat-tol", type=click.FloatRange(min=0), default=DEFAULT_FLAT_TOL,
+              show_default=True,
+              help="A panel is flat (no mold) where |K|·l² = |δ_uu w / w| ≤ T on all of it.")
+@click.option("--mold-max-length", type=click.FloatRange(min=0, min_open=True), default=None,
+              help="Longest mold piece along the meridian (net units) [default: no limit].")
+@click.option("--tol", type=click.FloatRange(min=0, min_open=True), default=DEFAULT_TOL,
+              show_default=True,
+              help="Relative tolerance of equation (5) and of the comparison between nets.")
+@click.option("--unit", type=click.Choice(list(UNIT_MM)), default="mm", show_default=True,
+              help="Length unit of the nets (the profile DXF is written in mm).")
+@output_opt
+@force_opt
+def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length, tol, unit,
+                     output, force):
+    """Extract the surface of revolution that the nets NET… are isometric to (paper §4.2.2).
+
+    Writes the mold artifact -o MOLD: MOLD.json, MOLD.obj (the surface of revolution and one
+    sector), MOLD.profile.csv (r,h), MOLD.profile.dxf (mm, with the axis) and
+    MOLD.panels.csv (the panel-to-mold map). Several nets must be isometric to the same
+    surface of revolution (one mold for all). When x(u) would be imaginary, λ is lowered to
+    the largest value that keeps it real (a warning on stderr says to what).
+    """
+    if segments is not None and lam is not None:
+        raise click.UsageError("--segments and --lambda are mutually exclusive")
+    paths = mold_paths(output)
+    check_writable(output, force, *(paths[k] for k in ("profile_csv", "profile_dxf",
+                                                        "panels_csv")))
+    loaded = [(str(artifact_paths(stem)[0]), read_net(stem)) for stem in nets]
+    mold = extract_mold([(name, net.f) for name, net in loaded], segments=segments, lam=lam,
+                        panel_size=panel_size, flat_tol=flat_tol, max_length=mold_max_length,
+                        tol=tol)
+    folder = paths["json"].resolve().parent
+    inputs = {f"net{k + 1}": file_input(name, folder) for k, (name, _) in enumerate(loaded)}
+    mer = mold.meridian
+    metrics = mold.metrics()
+    message = (f"λ lowered from {mer.requested * mer.lam / mer.segments:.6g} to {mer.lam:.6g} "
+               "so that every x(u) is real" if mer.lowered else "ok")
+    files = mold_files(
+        output,
+        profile={"r": mer.r, "h": mer.h, "d": mer.d, "l": mer.l, "x": mer.x},
+        unit=unit,
+        segments={"segments": mer.segments, "segments_requested": mer.requested,
+                  "lambda": mer.lam, "lambda_lowered": mer.lowered},
+        sector_deg=math.degrees(mold.sector_angle),
+        pieces=[{"id": p.id, "rows": [p.start, p.stop], "meridian_length": p.length}
+                for p in mold.pieces],
+        nets=[{"input": f"net{k + 1}", "shape": list(p.shape),
+               "column_angles_deg": [math.degrees(t) for t in p.theta.tolist()],
+               "revolution_residual_max": p.residual_max} for k, p in enumerate(mold.nets)],
+        panels=mold.panel_records(),
+        panel_size=panel_size,
+        inputs=inputs,
+        parameters={"segments": segments, "lambda": lam, "panel_size": panel_size,
+                    "flat_tol": flat_tol, "mold_max_length": mold_max_length, "tol": tol,
+                    "unit": unit},
+        metrics=metrics,
+        status={"state": "ok", "lambda_lowered": mer.lowered, "message": message},
+    )
+    write_files(files, force=force)
+    click.echo(str(paths["json"]))
+    log.info("%s: N = %.6g (λ = %.6g), %d mold pieces, %d curved and %d flat panels, isometry "
+             "error ≤ %.3g", paths["json"], mer.segments, mer.lam, metrics["pieces"],
+             metrics["panels_curved"], metrics["panels_flat"], metrics["isometry_error_max"])

@@ -1,0 +1,70 @@
+"""``dgpc laths``: the laths of a geodesic gridshell and their cut list (paper §6.2.1)."""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+import click
+import numpy as np
+
+from dgpc_cli.cli.options import force_opt
+from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.artifact import artifact_paths, file_input
+from dgpc_cli.io.atomic import write_files
+from dgpc_cli.io.laths import laths_files
+from dgpc_cli.io.net import read_net
+from dgpc_cli.stages.laths import GAP, gridshell
+
+log = logging.getLogger(__name__)
+
+
+@click.command(short_help="Gridshell laths of two nets and their cut list.")
+@click.argument("net_a", type=click.Path(path_type=Path))
+@click.argument("net_b", type=click.Path(path_type=Path))
+@click.option("--gap", type=click.FloatRange(min=0, min_open=True),
+              help=f"Largest distance between two laths at a crossing (default: {GAP} × the "
+                   "mean edge length of the nets).")
+@click.option("-o", "--output", "output", required=True,
+              type=click.Path(dir_okay=False, path_type=Path),
+              help="Output stem: writes STEM.json, STEM.obj (laths as polylines) and STEM.csv "
+                   "(cut list).")
+@force_opt
+def laths(net_a, net_b, gap, output, force):
+    """Laths of a geodesic gridshell (paper §6.2.1, Fig. 14) from two transversal nets NET_A
+    and NET_B on one reference (e.g. `init --method geodesic` with two --direction values, each
+    optimized with `--mode fit`).
+
+    The laths are the u-lines (geodesics) of both nets, families A and B. STEM.csv lists per
+    lath: id, family, length, the number of crossings with the other family, their arc-length
+    positions from the lath's start (u = 0; where the joints are drilled) and the crossing
+    laths' ids.
+    """
+    json_path, obj_path = artifact_paths(output)
+    csv_path = json_path.with_suffix(".csv")
+    if not force:
+        for p in (json_path, obj_path, csv_path):
+            if p.exists():
+                raise DgpcError("already exists; use --force to overwrite", source=p)
+    a, b = read_net(net_a), read_net(net_b)
+    ref_a, ref_b = a.data.get("reference"), b.data.get("reference")
+    if ref_a and ref_b and ref_a.get("sha256") != ref_b.get("sha256"):
+        log.warning("%s and %s record different references", net_a, net_b)
+    laths_a, laths_b, crossings = gridshell(a.f, b.f, gap=gap)
+    if len(crossings.a) == 0:
+        raise DgpcError("the laths of the two nets do not cross (are the nets on one reference, "
+                        "in transversal directions?)", source=net_b)
+    all_laths = laths_a + laths_b
+    lengths = np.array([lt.length for lt in all_laths])
+    folder = json_path.resolve().parent
+    inputs = {"net_a": file_input(artifact_paths(net_a)[0], folder),
+              "net_b": file_input(artifact_paths(net_b)[0], folder)}
+    metrics = {"laths": len(all_laths), "crossings": int(len(crossings.a)),
+               "crossing_gap_max": float(crossings.gap.max()),
+               "length_total": float(lengths.sum()), "length_max": float(lengths.max())}
+    files = laths_files(output, all_laths, crossings, inputs=inputs,
+                        parameters={"gap": gap}, metrics=metrics)
+    write_files(files, force=force)
+    log.info("%d laths, %d crossings, largest gap %.3g", len(all_laths), len(crossings.a),
+             metrics["crossing_gap_max"])
+    click.echo(str(json_path))

@@ -1,0 +1,253 @@
+"""The ``mold`` artifact (SPEC §3, §6): STEM.json + STEM.obj + profile CSV/DXF + panel map CSV.
+
+Files, all listed in ``data`` with their sha256:
+
+* ``STEM.obj`` — object ``surface``: the discrete surface of revolution, m rows × one full turn
+  (N segments; the last one partial when N is not an integer); object ``sector``: the mold
+  sector, just wide enough for the widest panel, its faces grouped by mold piece (``g M01``,
+  …, ``g no-mold`` for rows that need none);
+* ``STEM.profile.csv`` — the meridian, header ``r,h``, in the net's unit (it reads back with
+  ``dgpc init --profile``);
+* ``STEM.profile.dxf`` — the meridian in mm with the axis drawn (:mod:`dgpc_cli.mold.dxf`);
+* ``STEM.panels.csv`` — the panel-to-mold map, one line per panel.
+
+The JSON holds the profile (r, h, d, l, x), N and λ, the pieces and the panel-to-mold map.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .. import __version__
+from ..errors import DgpcError
+from ..mold.dxf import profile_dxf
+from .artifact import (
+    artifact_paths,
+    dumps_json,
+    load_envelope,
+    make_envelope,
+    relative_input,
+    resolve_input,
+    sha256_bytes,
+)
+from .jsonable import load_schema, validate
+from .obj import net_quads
+
+KIND = "mold"
+#: Extra files of a mold artifact: data.files key → suffix after the stem.
+EXTRA_FILES = {"profile_csv": ".profile.csv", "profile_dxf": ".profile.dxf",
+               "panels_csv": ".panels.csv"}
+
+
+def mold_paths(stem: str | Path) -> dict[str, Path]:
+    """Every file of a mold artifact: ``json``, ``obj`` and the keys of :data:`EXTRA_FILES`."""
+    json_path, obj_path = artifact_paths(stem)
+    base = str(json_path)[: -len(".json")]
+    return {"json": json_path, "obj": obj_path,
+            **{key: Path(base + suffix) for key, suffix in EXTRA_FILES.items()}}
+
+
+def _grid(r: np.ndarray, h: np.ndarray, phi: np.ndarray) -> np.ndarray:
+    return np.stack([r[:, None] * np.cos(phi)[None, :], r[:, None] * np.sin(phi)[None, :],
+                     np.broadcast_to(h[:, None], (r.size, phi.size))], axis=-1)
+
+
+def surface_angles(segments: float) -> np.ndarray:
+    """Column angles of the full turn: k·2π/N for k = 0 … ⌈N⌉, the last clipped to 2π."""
+    count = max(1, math.ceil(segments - 1e-9))
+    return np.minimum(np.arange(count + 1) * (2.0 * math.pi / segments), 2.0 * math.pi)
+
+
+def sector_angles(sector: float, segments: float) -> np.ndarray:
+    """Column angles of the sector [0, sector], steps of about 2π/N."""
+    q = max(1, math.ceil(sector / (2.0 * math.pi / segments) - 1e-9))
+    return np.linspace(0.0, sector, q + 1)
+
+
+def format_mold_obj(r, h, segments: float, sector: float,
+                    pieces: list[tuple[str, int, int]]) -> bytes:
+    """OBJ bytes: objects ``surface`` and ``sector`` (faces of the sector grouped by piece).
+
+    Vertices row-major per object, floats as ``repr``; no timestamps.
+    """
+    r, h = np.asarray(r, float), np.asarray(h, float)
+    m = r.size
+    surf = _grid(r, h, surface_angles(segments))
+    sect = _grid(r, h, sector_angles(sector, segments))
+    lines = [f"# dgpc {__version__}",
+             f"# mold: surface of revolution about the z axis, {m} rows, N = {segments!r}",
+             "o surface"]
+    lines += [f"v {x!r} {y!r} {z!r}" for x, y, z in surf.reshape(-1, 3).tolist()]
+    lines += [f"f {a} {b} {c} {d}" for a, b, c, d in (net_quads(m, surf.shape[1]) + 1).tolist()]
+    lines.append("o sector")
+    lines += [f"v {x!r} {y!r} {z!r}" for x, y, z in sect.reshape(-1, 3).tolist()]
+    quads = (net_quads(m, sect.shape[1]) + 1 + surf.shape[0] * surf.shape[1]).reshape(
+        m - 1, sect.shape[1] - 1, 4)
+    covered = np.zeros(m - 1, dtype=bool)
+    for pid, start, stop in pieces:
+        lines.append(f"g {pid}")
+        lines += [f"f {a} {b} {c} {d}" for a, b, c, d in quads[start:stop].reshape(-1, 4).tolist()]
+        covered[start:stop] = True
+    if not covered.all():
+        lines.append("g no-mold")
+        lines += [f"f {a} {b} {c} {d}" for a, b, c, d in quads[~covered].reshape(-1, 4).tolist()]
+    return ("\n".join(lines) + "\n").encode("ascii")
+
+
+def format_profile_csv(r, h) -> bytes:
+    """``r,h`` CSV of the meridian (floats as ``repr``)."""
+    lines = ["r,h"] + [f"{a!r},{b!r}" for a, b in zip(np.asarray(r, float).tolist(),
+                                                      np.asarray(h, float).tolist(), strict=True)]
+    return ("\n".join(lines) + "\n").encode("ascii")
+
+
+PANEL_COLUMNS = ("id", "net", "piece", "row_start", "row_stop", "col_start", "col_stop",
+                 "angle_start_deg", "angle_stop_deg", "isometry_error", "curvature_max", "flat")
+
+
+def format_panels_csv(panels: list[dict]) -> bytes:
+    """The panel-to-mold map as CSV, one line per panel (``piece`` empty for flat panels)."""
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow(PANEL_COLUMNS)
+    for p in panels:
+        curv = p["curvature_max"]
+        writer.writerow([p["id"], p["net"], p["piece"] or "", *p["rows"], *p["cols"],
+                         *(repr(float(a)) for a in p["angle_deg"]),
+                         repr(float(p["isometry_error"])),
+                         "" if curv is None else repr(float(curv)), int(p["flat"])])
+    return out.getvalue().encode("ascii")
+
+
+@dataclass
+class MoldArtifact:
+    """A mold artifact read back: the envelope fields (``data`` as in the JSON)."""
+
+    parameters: dict
+    inputs: dict
+    data: dict
+    metrics: dict
+    status: dict
+
+    @property
+    def r(self) -> np.ndarray:
+        return np.asarray(self.data["profile"]["r"], dtype=float)
+
+    @property
+    def h(self) -> np.ndarray:
+        return np.asarray(self.data["profile"]["h"], dtype=float)
+
+
+def mold_files(stem: str | Path, *, profile: dict, unit: str, segments: dict, sector_deg: float,
+               pieces: list[dict], nets: list[dict], panels: list[dict], panel_size: int,
+               inputs: dict, parameters: dict, metrics: dict, status: dict
+               ) -> dict[Path, bytes]:
+    """The bytes of every file of the artifact (nothing written), the JSON checked against
+    ``mold.schema.json``; to be written at once with :func:`~dgpc_cli.io.atomic.write_files`.
+
+    ``profile`` has the arrays r, h (m,), x, l (m−1,), d (m,); ``segments`` the fields
+    ``segments``, ``lambda``, ``lambda_lowered``, ``segments_requested``; ``pieces`` records
+    ``{"id", "rows": [a, b], "meridian_length"}``.
+    """
+    paths = mold_paths(stem)
+    folder = paths["json"].resolve().parent
+    r, h = np.asarray(profile["r"], float), np.asarray(profile["h"], float)
+    triples = [(p["id"], p["rows"][0], p["rows"][1]) for p in pieces]
+    files = {
+        "obj": format_mold_obj(r, h, segments["segments"], math.radians(sector_deg), triples),
+        "profile_csv": format_profile_csv(r, h),
+        "profile_dxf": profile_dxf(r, h, unit, triples),
+        "panels_csv": format_panels_csv(panels),
+    }
+    data = {
+        "rows": int(r.size),
+        "unit": unit,
+        "axis": {"point": [0.0, 0.0, 0.0], "direction": [0.0, 0.0, 1.0]},
+        "profile": {k: np.asarray(v, float).tolist() for k, v in profile.items()},
+        **segments,
+        "angle_step_deg": 360.0 / segments["segments"],
+        "sector": {"angle_deg": sector_deg,
+                   "columns": int(sector_angles(math.radians(sector_deg),
+                                                segments["segments"]).size)},
+        "surface": {"columns": int(surface_angles(segments["segments"]).size)},
+        "panel_size": int(panel_size),
+        "pieces": pieces,
+        "nets": nets,
+        "panels": panels,
+        "obj": paths["obj"].name,
+        "obj_sha256": sha256_bytes(files["obj"]),
+        "files": {key: relative_input(paths[key], folder, files[key]) for key in EXTRA_FILES},
+    }
+    doc = make_envelope(KIND, inputs=inputs, parameters=parameters, data=data, metrics=metrics,
+                        status=status)
+    json_bytes = dumps_json(doc)
+    validate(json.loads(json_bytes), load_schema(KIND), paths["json"])
+    return {paths["json"]: json_bytes, **{paths[key]: files[key] for key in files}}
+
+
+def _check_file(record: dict, json_path: Path, field: str) -> None:
+    path = resolve_input(record, json_path)
+    try:
+        data = path.read_bytes()
+    except FileNotFoundError:
+        raise DgpcError(f"missing; {json_path.name} needs it beside it ({field})",
+                        source=path) from None
+    except OSError as e:
+        raise DgpcError(f"cannot read: {e.strerror or e}", source=path) from None
+    if sha256_bytes(data) != record["sha256"]:
+        raise DgpcError(f"does not match {json_path.name} (edited separately?): its sha256 "
+                        f"differs from {field}", source=path)
+
+
+def check_mold_data(data: dict, source: Path) -> None:
+    """Consistency the schema cannot express: array lengths against ``rows``, piece and panel
+    row ranges inside the grid, panel pieces that exist."""
+    m = data["rows"]
+    for key, size in (("r", m), ("h", m), ("d", m), ("l", m - 1), ("x", m - 1)):
+        got = len(data["profile"][key])
+        if got != size:
+            raise DgpcError(f"data.profile.{key}: {got} values, expected {size} "
+                            f"(data.rows = {m})", source=source)
+    ids = set()
+    for k, piece in enumerate(data["pieces"]):
+        a, b = piece["rows"]
+        if not 0 <= a < b <= m - 1:
+            raise DgpcError(f"data.pieces[{k}].rows: [{a}, {b}] is not a row range of the "
+                            f"{m} rows", source=source)
+        ids.add(piece["id"])
+    for k, panel in enumerate(data["panels"]):
+        a, b = panel["rows"]
+        if not 0 <= a < b <= m - 1:
+            raise DgpcError(f"data.panels[{k}].rows: [{a}, {b}] is not a row range of the "
+                            f"{m} rows", source=source)
+        if panel["piece"] is not None and panel["piece"] not in ids:
+            raise DgpcError(f"data.panels[{k}].piece: {panel['piece']!r} is not a mold piece",
+                            source=source)
+        if panel["net"] >= len(data["nets"]):
+            raise DgpcError(f"data.panels[{k}].net: {panel['net']} but there are "
+                            f"{len(data['nets'])} nets", source=source)
+
+
+def read_mold(stem: str | Path) -> MoldArtifact:
+    """Read and validate a mold artifact: envelope and schema, consistency, the OBJ and the
+    extra files present and unchanged (sha256)."""
+    paths = mold_paths(stem)
+    json_path = paths["json"]
+    try:
+        doc = load_envelope(json_path, KIND)
+        data = doc["data"]
+        check_mold_data(data, json_path)
+    except DgpcError as err:
+        raise DgpcError(f"not a valid mold artifact: {err.reason}", source=err.source) from None
+    _check_file({"path": data["obj"], "sha256": data["obj_sha256"]}, json_path, "data.obj")
+    for key, record in data["files"].items():
+        _check_file(record, json_path, f"data.files.{key}")
+    return MoldArtifact(parameters=doc["parameters"], inputs=doc["inputs"], data=data,
+                        metrics=doc["metrics"], status=doc["status"])

@@ -1,0 +1,122 @@
+"""The ``strips`` artifact (SPEC §3, §6 planarize-strips): STEM.json + STEM.obj.
+
+The OBJ holds one object per strip (``o S-v07``) with its 2m vertices in the order
+A_0 B_0 A_1 B_1 … (A on the geodesic v, B on v+1), the planar quads A_u A_(u+1) B_(u+1) B_u and
+the rulings A_u B_u as lines. The JSON ``data.strips`` lists the strips in the OBJ's order with
+what the OBJ cannot hold (quality, ruling directions, flat rows, polish outcome).
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .. import __version__
+from ..errors import DgpcError
+from .artifact import artifact_paths, dumps_json, load_envelope, make_envelope, sha256_bytes
+from .jsonable import load_schema, validate
+from .obj import _vertex_rows
+
+KIND = "strips"
+
+
+def format_parts_obj(title: str, parts: list[tuple[str, np.ndarray, np.ndarray]]) -> bytes:
+    """OBJ bytes of quad strips ``(name, A (m, d), B (m, d))`` (d = 2 gives z = 0): one object
+    per strip, vertices A_0 B_0 A_1 B_1 …, quads A_u A_(u+1) B_(u+1) B_u, lines A_u B_u.
+    Floats as ``repr`` (exact, deterministic)."""
+    lines = [f"# dgpc {__version__}", f"# {title}",
+             "# per object: vertices A_0 B_0 A_1 B_1 ..., quads A_u A_u+1 B_u+1 B_u, "
+             "lines A_u B_u"]
+    base = 1
+    for name, A, B in parts:
+        grid = np.stack([A, B], axis=1).reshape(-1, A.shape[1])
+        if grid.shape[1] == 2:
+            grid = np.concatenate([grid, np.zeros((len(grid), 1))], axis=1)
+        m = A.shape[0]
+        lines.append(f"o {name}")
+        lines += [f"v {x!r} {y!r} {z!r}" for x, y, z in grid.astype(float).tolist()]
+        a = base + 2 * np.arange(m)
+        lines += [f"f {p} {q} {r} {s}" for p, q, r, s in
+                  np.stack([a[:-1], a[1:], a[1:] + 1, a[:-1] + 1], axis=-1).tolist()]
+        lines += [f"l {p} {q}" for p, q in np.stack([a, a + 1], axis=-1).tolist()]
+        base += 2 * m
+    return ("\n".join(lines) + "\n").encode("ascii")
+
+
+def parse_parts_obj(data: bytes, rows: list[int], source) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The strips ``(A, B)`` of an OBJ written by :func:`format_parts_obj` with ``rows[i]``
+    rows each (vertex counts checked)."""
+    vertices = np.array(_vertex_rows(data, source), dtype=float).reshape(-1, 3)
+    expected = 2 * sum(rows)
+    if len(vertices) != expected:
+        raise DgpcError(f"{len(vertices)} vertices, but the JSON lists strips with {expected}",
+                        source=source)
+    if not np.isfinite(vertices).all():
+        raise DgpcError("non-finite vertex coordinate", source=source)
+    out, start = [], 0
+    for m in rows:
+        grid = vertices[start:start + 2 * m].reshape(m, 2, 3)
+        out.append((grid[:, 0], grid[:, 1]))
+        start += 2 * m
+    return out
+
+
+def read_obj_checked(json_path: Path, obj_path: Path, sha256: str) -> bytes:
+    """The bytes of an artifact's OBJ, checked against the hash its JSON records."""
+    try:
+        obj_bytes = obj_path.read_bytes()
+    except FileNotFoundError:
+        raise DgpcError(f"missing; {json_path.name} needs it beside it (data.obj)",
+                        source=obj_path) from None
+    except OSError as e:
+        raise DgpcError(f"cannot read: {e.strerror or e}", source=obj_path) from None
+    if sha256_bytes(obj_bytes) != sha256:
+        raise DgpcError(f"{obj_path.name} does not match {json_path.name} (edited separately?): "
+                        "its sha256 differs from data.obj_sha256", source=obj_path)
+    return obj_bytes
+
+
+@dataclass
+class StripsArtifact:
+    """Planar-quad strips: ``geometry[i] = (A, B)`` with ``A, B (m, 3)`` and the JSON record
+    ``records[i]`` (``id``, ``v``, ``rows``, quality, rulings), plus the envelope fields."""
+
+    geometry: list
+    records: list
+    source_shape: tuple
+    parameters: dict = field(default_factory=dict)
+    inputs: dict = field(default_factory=dict)
+    metrics: dict = field(default_factory=dict)
+    status: dict = field(default_factory=dict)
+
+
+def strips_files(stem: str | Path, art: StripsArtifact) -> dict[Path, bytes]:
+    """The bytes of ``STEM.json`` and ``STEM.obj`` (nothing written), schema-checked."""
+    json_path, obj_path = artifact_paths(stem)
+    ids = [r["id"] for r in art.records]
+    obj_bytes = format_parts_obj(f"strips of planar quads ({len(ids)})",
+                                 [(i, A, B) for i, (A, B) in zip(ids, art.geometry, strict=True)])
+    data = {"source_shape": list(art.source_shape), "geodesic_family": "u",
+            "strips": art.records, "obj": obj_path.name, "obj_sha256": sha256_bytes(obj_bytes)}
+    doc = make_envelope(KIND, inputs=art.inputs, parameters=art.parameters, data=data,
+                        metrics=art.metrics, status=art.status)
+    json_bytes = dumps_json(doc)
+    validate(json.loads(json_bytes), load_schema(KIND), json_path)
+    return {json_path: json_bytes, obj_path: obj_bytes}
+
+
+def read_strips(stem: str | Path) -> StripsArtifact:
+    """Read and validate a strips artifact (envelope, schema, OBJ hash and vertex counts)."""
+    json_path, obj_path = artifact_paths(stem)
+    doc = load_envelope(json_path, KIND)
+    data = doc["data"]
+    obj_bytes = read_obj_checked(json_path, obj_path, data["obj_sha256"])
+    records = data["strips"]
+    geometry = parse_parts_obj(obj_bytes, [r["rows"] for r in records], obj_path)
+    return StripsArtifact(geometry=geometry, records=records,
+                          source_shape=tuple(data["source_shape"]),
+                          parameters=doc["parameters"], inputs=doc["inputs"],
+                          metrics=doc["metrics"], status=doc["status"])

@@ -1,0 +1,94 @@
+"""How much of the reference surface a net covers, and how close its vertices lie to it
+(SPEC §7; issue: "the fraction of the reference's area that the net covers").
+
+The reference is sampled evenly: every triangle is cut into ``k²`` congruent sub-triangles
+(regular subdivision), each sample the centroid of one, weighted by its area. A sample counts
+as covered when its closest point on the triangulated net (libigl AABB, one vectorized query)
+is not on the net's boundary — a point beyond the net's edge projects onto that edge — and it
+is no farther from the net than the net's mean edge length (which leaves out the far side of a
+folded or closed reference).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from dgpc_cli.metrics.frames import as_grid
+from dgpc_cli.metrics.hausdorff import net_triangles
+
+__all__ = ["coverage", "subdivision_samples"]
+
+#: Samples aimed at on the reference.
+DEFAULT_SAMPLES = 60_000
+#: Barycentric coordinate below which a closest point counts as on a net boundary edge.
+ON_EDGE = 1e-9
+
+
+def subdivision_samples(vertices, faces, target: int = DEFAULT_SAMPLES):
+    """Centroids ``(t·k², 3)`` of the ``k²`` sub-triangles of every face and their areas
+    ``(t·k²,)``, ``k = clip(round(√(target/t)), 1, 16)``."""
+    V, F = np.asarray(vertices, float), np.asarray(faces, np.int64)
+    k = int(min(16, max(1, round(math.sqrt(target / max(len(F), 1))))))
+    i, j = np.meshgrid(np.arange(k), np.arange(k), indexing="ij")
+    up = (i + j) <= k - 1                                   # upright sub-triangles
+    ui, uj = i[up], j[up]
+    dn = (i + j) <= k - 2                                   # upside-down ones
+    di, dj = i[dn], j[dn]
+    bary = np.concatenate([np.stack([ui + 1 / 3, uj + 1 / 3], 1),
+                           np.stack([di + 2 / 3, dj + 2 / 3], 1)]) / k      # (k², 2)
+    bary = np.column_stack([1 - bary.sum(1), bary])
+    tri = V[F]
+    pts = np.einsum("sk,fkd->fsd", bary, tri).reshape(-1, 3)
+    area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+    return pts, np.repeat(area / k**2, len(bary))
+
+
+def _boundary_edge_mask(m: int, n: int) -> np.ndarray:
+    """For the faces of :func:`net_triangles`: ``(2(m-1)(n-1), 3)`` True where the edge
+    opposite corner c (c = 0, 1, 2) lies on the net's boundary."""
+    u, v = np.meshgrid(np.arange(m - 1), np.arange(n - 1), indexing="ij")
+    u, v = u.ravel(), v.ravel()
+    # lower triangle a=(u,v), b=(u+1,v), c=(u+1,v+1): edges bc (opp a), ca (diagonal), ab
+    low = np.stack([u + 1 == m - 1, np.zeros_like(u, bool), v == 0], 1)
+    # upper triangle a=(u,v), c=(u+1,v+1), d=(u,v+1): edges cd (opp a), da (opp c), ac
+    upp = np.stack([v + 1 == n - 1, u == 0, np.zeros_like(u, bool)], 1)
+    return np.concatenate([low, upp])
+
+
+def coverage(f, ref_vertices, ref_faces, *, samples: int = DEFAULT_SAMPLES) -> dict:
+    """Area coverage of the reference by the net ``f (m, n, 3)`` and vertex distances::
+
+        {"area_fraction": covered / reference area, "covered_area", "reference_area",
+         "vertex_distance_max": max distance of a net vertex to the reference,
+         "vertex_distance_relative": the same / the reference's bounding-box diagonal}
+    """
+    import igl
+
+    f = as_grid(f)
+    m, n, _ = f.shape
+    nv, nf = net_triangles(f)
+    rv = np.ascontiguousarray(ref_vertices, dtype=float)
+    rf = np.ascontiguousarray(ref_faces, dtype=np.int64)
+    pts, weight = subdivision_samples(rv, rf, samples)
+    d2, fid, closest = igl.point_mesh_squared_distance(pts, nv, nf)
+    fid = np.asarray(fid, dtype=np.int64)
+    tri = nv[nf[fid]]
+    bary = igl.barycentric_coordinates(np.ascontiguousarray(closest),
+                                       np.ascontiguousarray(tri[:, 0]),
+                                       np.ascontiguousarray(tri[:, 1]),
+                                       np.ascontiguousarray(tri[:, 2]))
+    on_boundary = ((bary < ON_EDGE) & _boundary_edge_mask(m, n)[fid]).any(axis=1)
+    du = np.linalg.norm(f[1:] - f[:-1], axis=-1)
+    dv = np.linalg.norm(f[:, 1:] - f[:, :-1], axis=-1)
+    reach = float((du.sum() + dv.sum()) / (du.size + dv.size))
+    covered = ~on_boundary & (np.sqrt(d2) <= reach)
+    total = float(weight.sum())
+    vd2, _, _ = igl.point_mesh_squared_distance(np.ascontiguousarray(nv), rv, rf)
+    vmax = float(np.sqrt(np.max(vd2)))
+    diagonal = float(np.linalg.norm(np.ptp(rv, axis=0)))
+    return {"area_fraction": float(weight[covered].sum() / total) if total > 0 else None,
+            "covered_area": float(weight[covered].sum()), "reference_area": total,
+            "vertex_distance_max": vmax,
+            "vertex_distance_relative": vmax / diagonal if diagonal > 0 else None}

@@ -1,0 +1,156 @@
+"""``dgpc planarize-strips``: geodesic strips as discrete developable strips of planar quads
+(paper §6.2.4, Fig. 18 middle-right; SPEC §6)."""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from dgpc_cli.errors import DgpcError
+from dgpc_cli.strips import strip_id
+from dgpc_cli.strips.polish import polish_strip
+from dgpc_cli.strips.quality import deviation, planarity_defect, strip_width
+from dgpc_cli.strips.rulings import (
+    cut_rulings,
+    cut_tangents,
+    limit_obliqueness,
+    ruling_directions,
+    strip_boundaries,
+    strip_normals,
+)
+
+log = logging.getLogger(__name__)
+
+#: Rows whose strip normals turn by less than this (radians per row) count as flat (§6.2.4).
+FLAT_ANGLE = 1e-6
+#: Rulings cut the boundary geodesics at most this many rows from their v-edge.
+MAX_SHIFT = 0.45
+#: Quads with a planarity defect above this after the ruling construction get polished.
+POLISH_ABOVE = 1e-10
+
+
+@dataclass
+class PlanarStrip:
+    """One strip between the u-lines v and v+1 as planar quads ``A_u, A_(u+1), B_(u+1), B_u``.
+
+    ``A, B (m, 3)`` lie on the boundary geodesics v and v+1; the rulings are the segments
+    ``A_u B_u``. ``directions (m, 3)`` are the estimated ruling directions (N × N₁, averaged
+    across flat rows), ``flat (m,)`` marks those rows, ``limited (m,)`` the rows whose ruling
+    was turned towards the v-edge (too oblique for the quad strip), ``params (m, 2)`` the
+    parameters of A, B on the original polylines (row index + fraction). ``planarity`` is the
+    largest diagonal distance over mean diagonal length, ``deviation`` the largest distance
+    from the original strip over its ``width`` (mean v-edge length).
+    """
+
+    id: str
+    v: int
+    A: np.ndarray
+    B: np.ndarray
+    directions: np.ndarray
+    flat: np.ndarray
+    limited: np.ndarray
+    params: np.ndarray
+    planarity: float
+    deviation: float
+    width: float
+    construction_planarity: float
+    polish: dict
+
+    @property
+    def rulings_ordered(self) -> bool:
+        """Whether consecutive rulings keep their order on both geodesics (no crossing)."""
+        return bool(np.all(np.diff(self.params, axis=0) > 0))
+
+    def record(self) -> dict:
+        """The JSON record of the strip (its geometry goes to the OBJ)."""
+        return {"id": self.id, "v": self.v, "rows": int(self.A.shape[0]),
+                "planarity": self.planarity, "deviation": self.deviation, "width": self.width,
+                "construction_planarity": self.construction_planarity,
+                "rulings_ordered": self.rulings_ordered,
+                "ruling_directions": self.directions, "flat_rows": self.flat.tolist(),
+                "limited_rows": self.limited.tolist(),
+                "params": self.params, "polish": self.polish}
+
+
+def parse_strip_range(text: str | None, n: int) -> list[int]:
+    """The strips ``V0..V1`` (both included) of ``--strips V0:V1`` for a net with n columns
+    (strips 0..n−2); all strips for None. DgpcError naming ``--strips`` if out of range."""
+    last = n - 2
+    if text is None:
+        return list(range(n - 1))
+    lo, sep, hi = text.partition(":")
+    try:
+        v0 = int(lo) if lo.strip() else 0
+        v1 = int(hi) if sep and hi.strip() else (last if sep else v0)
+    except ValueError:
+        raise DgpcError(f"{text!r} is not V0:V1 (two strip indices)", source="--strips") from None
+    if not (0 <= v0 <= v1 <= last):
+        raise DgpcError(f"{text!r} is outside the net's strips 0:{last} (the net has {n} "
+                        f"u-lines, so {n - 1} strips)", source="--strips")
+    return list(range(v0, v1 + 1))
+
+
+def planarize_strips(f: np.ndarray, columns: list[int], *, flat_angle: float = FLAT_ANGLE,
+                     polish_above: float = POLISH_ABOVE, max_shift: float = MAX_SHIFT,
+                     progress: Callable[[int], None] | None = None) -> list[PlanarStrip]:
+    """Planar-quad strips for the strips ``columns`` of the net ``f (m, n, 3)`` (§6.2.4).
+
+    Rulings from neighbouring normals N × N₁ (averaged across flat parts; turned towards the
+    v-edge where they would cut more than ``max_shift`` rows away), ruling planes cut with
+    the boundary geodesics, then a guided-projection polish of strips whose quads stay measurably
+    non-planar (defect above ``polish_above``).
+    """
+    f = np.asarray(f, dtype=float)
+    n = f.shape[1]
+    P, Q = strip_boundaries(f, columns)
+    normals = strip_normals(P, Q)
+    directions, flat = ruling_directions(P, Q, normals, flat_angle)
+    directions, limited = limit_obliqueness(P, Q, directions, normals, max_shift)
+    A, B, params = cut_rulings(P, Q, directions, normals)
+    out = []
+    for i, v in enumerate(columns):
+        a, b = A[i], B[i]
+        if not (np.isfinite(a).all() and np.isfinite(b).all()):
+            raise DgpcError(f"strip {strip_id(v, n)}: a ruling plane does not cut the boundary "
+                            "geodesics (degenerate strip)", source="net")
+        before = float(np.max(planarity_defect(a, b)))
+        polish = {"applied": False}
+        if before > polish_above:
+            result = polish_strip(a, b, cut_tangents(P[i], Q[i], params[i]))
+            a, b = result.A, result.B
+            polish = {"applied": True, "status": result.status, "mode": result.mode,
+                      "iterations": result.iterations,
+                      "R": result.R}
+            log.debug("%s: polish %s after %d iterations", strip_id(v, n), result.status,
+                      result.iterations)
+        width = strip_width(P[i], Q[i])
+        strip = PlanarStrip(
+            id=strip_id(v, n), v=int(v), A=a, B=b, directions=directions[i], flat=flat[i],
+            limited=limited[i],
+            params=params[i], planarity=float(np.max(planarity_defect(a, b))),
+            deviation=deviation(a, b, P[i], Q[i]) / width, width=width,
+            construction_planarity=before, polish=polish)
+        if not strip.rulings_ordered:
+            log.warning("%s: rulings cross (their cuts with the geodesics are out of order)",
+                        strip.id)
+        out.append(strip)
+        if progress is not None:
+            progress(1)
+    return out
+
+
+def strips_metrics(strips: list[PlanarStrip]) -> dict:
+    """Metrics of SPEC §7 for a strips artifact: planarity and deviation per strip and worst."""
+    return {
+        "n_strips": len(strips),
+        "max_planarity": max(s.planarity for s in strips),
+        "max_deviation": max(s.deviation for s in strips),
+        "polished": sum(bool(s.polish.get("applied")) for s in strips),
+        "per_strip": {s.id: {"planarity": s.planarity, "deviation": s.deviation,
+                             "width": s.width, "flat_rows": int(np.sum(s.flat)),
+                             "limited_rows": int(np.sum(s.limited))}
+                      for s in strips},
+    }

@@ -1,0 +1,67 @@
+"""``dgpc unfold``: develop planar-quad strips into the plane and group them into congruence
+classes (paper §6.2.4, Fig. 18 bottom; SPEC §6, §7, §8)."""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+
+from dgpc_cli.strips.congruence import congruence_classes
+from dgpc_cli.strips.develop import develop_strip, signed_area
+
+log = logging.getLogger(__name__)
+
+#: Default congruence tolerance: largest point distance over the strip length (SPEC §8).
+CONGRUENCE_TOL = 1e-3
+
+
+def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
+                  congruence_tol: float = CONGRUENCE_TOL,
+                  mirror_ok: bool = False) -> tuple[list[dict], list[dict], dict]:
+    """Develop every strip ``(A, B)`` of ``geometry`` and classify the developments.
+
+    Returns the part records and class records of the flat artifact (see
+    :mod:`dgpc_cli.io.flat`) and its metrics.
+    """
+    devs = [develop_strip(A, B) for A, B in geometry]
+    classes = congruence_classes([(d.A, d.B, d.length) for d in devs], congruence_tol,
+                                 mirror_ok=mirror_ok)
+    parts: list[dict] = [{} for _ in devs]
+    class_records = []
+    for cls in classes:
+        rep_len = devs[cls.representative].length
+        for i, al in zip(cls.members, cls.alignments, strict=True):
+            d = devs[i]
+            parts[i] = {
+                "id": ids[i], "strip": int(columns[i]), "class": cls.id,
+                "outline": d.outline, "score": d.rulings, "label": d.label_point,
+                "geodesics": [d.A, d.B], "straightness": d.straightness, "strain": d.strain,
+                "length": d.length, "area": signed_area(d.outline),
+                "alignment": al.record(rep_len)}
+        errors = [al.error for al in cls.alignments]
+        class_records.append({
+            "id": cls.id, "representative": ids[cls.representative],
+            "quantity": len(cls.members), "members": [ids[i] for i in cls.members],
+            "max_error": max(errors), "max_relative_error": max(errors) / rep_len})
+    metrics = flat_metrics(parts, class_records)
+    log.info("%d parts in %d congruence classes; max strain %.3g", len(parts),
+             len(class_records), metrics["max_strain"])
+    return parts, class_records, metrics
+
+
+def flat_metrics(parts: list[dict], classes: list[dict]) -> dict:
+    """The metrics of a flat artifact recomputed from its records (for ``dgpc inspect``)."""
+    return {
+        "n_parts": len(parts), "n_classes": len(classes),
+        "max_strain": max(p["strain"] for p in parts),
+        "max_straightness": float(max(max(p["straightness"]) for p in parts)),
+        "max_congruence_error": max(c["max_relative_error"] for c in classes),
+        "classes": {c["id"]: {"quantity": c["quantity"], "representative": c["representative"],
+                              "max_relative_error": c["max_relative_error"]} for c in classes},
+        "per_part": {p["id"]: {"strain": p["strain"], "straightness": p["straightness"],
+                               "length": p["length"], "class": p["class"],
+                               "relative_error": p["alignment"]["relative_error"]}
+                     for p in parts},
+        "total_area": float(np.sum([p["area"] for p in parts])),
+    }

@@ -1,0 +1,132 @@
+"""The mold artifact: JSON schema (valid and invalid), DXF profile (re-read, audit), reading."""
+
+import copy
+import json
+
+import ezdxf
+import numpy as np
+import pytest
+from cli_helpers import dgpc
+from mold_samples import gehry_nets, write
+
+from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.jsonable import load_schema, validate
+from dgpc_cli.io.mold import read_mold
+
+
+@pytest.fixture(scope="module")
+def mold(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("mold")
+    stem = write(folder / "g", gehry_nets()[1])
+    dgpc("extract-mold", stem, "--panel-size", 2, "--mold-max-length", 1.3, "--unit", "m",
+         "-o", folder / "mold")
+    return folder / "mold"
+
+
+def doc_of(stem):
+    return json.loads(stem.with_suffix(".json").read_text())
+
+
+def test_written_json_is_valid(mold):
+    validate(doc_of(mold), load_schema("mold"), "mold.json")
+    art = read_mold(mold)
+    assert art.r.shape == art.h.shape == (21,)
+
+
+@pytest.mark.parametrize("path, value, field", [
+    (("kind",), "net", "kind"),
+    (("data", "profile", "r", 3), -1.0, "data.profile.r[3]"),
+    (("data", "profile", "x", 0), None, "data.profile.x[0]"),
+    (("data", "panels", 0, "id"), "panel-1", "data.panels[0].id"),
+    (("data", "panels", 0, "flat"), "yes", "data.panels[0].flat"),
+    (("data", "pieces", 0, "rows"), [3], "data.pieces[0].rows"),
+    (("data", "obj_sha256"), "abc", "data.obj_sha256"),
+    (("metrics", "pieces"), -2, "metrics.pieces"),
+])
+def test_schema_rejects_invalid_documents(mold, path, value, field):
+    doc = copy.deepcopy(doc_of(mold))
+    node = doc
+    for key in path[:-1]:
+        node = node[key]
+    node[path[-1]] = value
+    with pytest.raises(DgpcError) as err:
+        validate(doc, load_schema("mold"), "mold.json")
+    assert f"mold.json: {field}:" in str(err.value)
+
+
+def test_schema_rejects_a_missing_field(mold):
+    doc = doc_of(mold)
+    del doc["data"]["panels"][0]["isometry_error"]
+    with pytest.raises(DgpcError, match=r"data.panels\[0\].isometry_error: missing"):
+        validate(doc, load_schema("mold"), "mold.json")
+
+
+def test_profile_dxf_reads_back_in_mm_and_passes_audit(mold):
+    doc = doc_of(mold)
+    path = mold.parent / doc["data"]["files"]["profile_dxf"]["path"]
+    dxf = ezdxf.readfile(path)
+    assert dxf.dxfversion == "AC1024"                                     # R2010
+    assert dxf.header["$INSUNITS"] == 4                                   # mm
+    auditor = dxf.audit()
+    assert not auditor.has_errors, [str(e) for e in auditor.errors]
+    msp = dxf.modelspace()
+    (poly,) = msp.query('LWPOLYLINE[layer=="PROFILE"]')
+    pts = np.array([(p[0], p[1]) for p in poly.get_points("xy")])
+    r, h = np.array(doc["data"]["profile"]["r"]), np.array(doc["data"]["profile"]["h"])
+    assert np.allclose(pts, 1000.0 * np.column_stack([r, h]), rtol=0, atol=1e-9)   # m → mm
+    assert not poly.closed
+    (axis,) = msp.query('LINE[layer=="AXIS"]')
+    assert axis.dxf.start.x == axis.dxf.end.x == 0.0
+    assert axis.dxf.start.y < pts[:, 1].min() and axis.dxf.end.y > pts[:, 1].max()
+    assert axis.dxf.linetype == "CENTER"
+    pieces = doc["data"]["pieces"]
+    assert len(msp.query('LINE[layer=="PIECES"]')) == 2 * len(pieces)
+    assert sorted(t.dxf.text for t in msp.query("TEXT")) == [p["id"] for p in pieces]
+
+
+def test_profile_and_panel_csv(mold):
+    doc = doc_of(mold)
+    lines = (mold.parent / "mold.profile.csv").read_text().splitlines()
+    assert lines[0] == "r,h" and len(lines) == 22
+    assert [float(v) for v in lines[5].split(",")] == [doc["data"]["profile"]["r"][4],
+                                                        doc["data"]["profile"]["h"][4]]
+    rows = (mold.parent / "mold.panels.csv").read_text().splitlines()
+    assert rows[0].startswith("id,net,piece,row_start,row_stop")
+    assert len(rows) == 1 + len(doc["data"]["panels"])
+    first = rows[1].split(",")
+    panel = doc["data"]["panels"][0]
+    assert first[0] == panel["id"] and first[2] == (panel["piece"] or "")
+    assert first[-1] == str(int(panel["flat"]))
+
+
+def test_reading_detects_edited_and_missing_files(mold, tmp_path):
+    for name in mold.parent.iterdir():
+        if name.name.startswith("mold"):
+            (tmp_path / name.name).write_bytes(name.read_bytes())
+    copy_stem = tmp_path / "mold"
+    read_mold(copy_stem)
+    obj = tmp_path / "mold.obj"
+    obj.write_text(obj.read_text().replace("o sector", "o sector2"))
+    with pytest.raises(DgpcError, match="mold.obj: does not match mold.json"):
+        read_mold(copy_stem)
+    res = dgpc("inspect", copy_stem, expect=1)
+    assert "mold.obj" in res.stderr
+    obj.write_bytes((mold.parent / "mold.obj").read_bytes())
+    (tmp_path / "mold.profile.dxf").unlink()
+    with pytest.raises(DgpcError, match=r"mold.profile.dxf: missing.*data.files.profile_dxf"):
+        read_mold(copy_stem)
+
+
+def test_reading_checks_consistency(mold, tmp_path):
+    doc = doc_of(mold)
+    doc["data"]["profile"]["h"] = doc["data"]["profile"]["h"][:-1]
+    path = tmp_path / "mold.json"
+    path.write_text(json.dumps(doc))
+    res = dgpc("inspect", path, expect=1)
+    assert "data.profile.h: 20 values, expected 21" in res.stderr
+    doc = doc_of(mold)
+    doc["data"]["panels"][0]["piece"] = "M99"
+    doc["data"]["panels"][0]["flat"] = False
+    path.write_text(json.dumps(doc))
+    res = dgpc("inspect", path, expect=1)
+    assert "data.panels[0].piece: 'M99' is not a mold piece" in res.stderr
