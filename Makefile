@@ -36,6 +36,7 @@ demo: setup ## Run the main job on the built-in sample; prints where the result 
 bench: setup ## Solver speed at the paper's sizes beside a plain spsolve reference.
 	$(BIN)/python benchmarks/solver_bench.py
 	$(BIN)/python benchmarks/closest_points_bench.py
+	$(BIN)/python benchmarks/nesting_bench.py
 
 clean: ## Remove the virtualenv and generated output.
 	rm -rf $(VENV) $(DEMO) .pytest_cache .ruff_cache *.egg-info

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 @dataclass(frozen=True)
 class Tolerances:
     #: Solver stop on R (net scaled to mean edge length 1), SPEC §7.
-    solver_R: float = 1e-10
+    solver_R: float = 1e-9
     #: Iteration limit of one optimization step.
     max_iter: int = 200
     #: Shortest edge, relative to the mean, below which a net counts as folded.

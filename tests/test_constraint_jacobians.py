@@ -4,19 +4,20 @@ import numpy as np
 import pytest
 
 from dgpc_cli.core.constraints import TERMS
+from dgpc_cli.core.constraints.isometry import boundary_angle_pairs
 from dgpc_cli.core.layout import NetLayout
 
 
-class Sphere:
-    """Exact closest points on a sphere: ⟨f − p, n⟩ = ‖f − c‖ − r, whose gradient is n."""
+class FrozenReference:
+    """Fixed closest points and normals, whatever the query (the Jacobian holds them fixed)."""
 
-    def __init__(self, center, radius):
-        self.c, self.r = np.asarray(center, float), float(radius)
+    def __init__(self, layout, rng):
+        n = rng.standard_normal((layout.n_vertices, 3))
+        self.n = n / np.linalg.norm(n, axis=1, keepdims=True)
+        self.p = rng.standard_normal((layout.n_vertices, 3))
 
     def closest(self, q):
-        d = q - self.c
-        n = d / np.linalg.norm(d, axis=1, keepdims=True)
-        return self.c + self.r * n, n
+        return self.p, self.n
 
 
 def _random_state(layout, rng):
@@ -31,12 +32,16 @@ def _random_state(layout, rng):
 def _bound(name, layout, rng):
     if name == "isometry":
         w0 = rng.uniform(0.5, 1.5, layout.n_edges)
-        return lambda x: TERMS[name](x, layout, w0=w0)
+        cos0 = rng.uniform(-0.3, 0.3, len(boundary_angle_pairs(layout)))
+        return lambda x: TERMS[name](x, layout, w0=w0, cos0=cos0)
     if name == "handles":
         ids, targets = np.array([0, 7, layout.n_vertices - 1]), rng.standard_normal((3, 3))
         return lambda x: TERMS[name](x, layout, ids, targets)
     if name == "approximation":
-        return lambda x: TERMS[name](x, layout, Sphere([0.2, 0.4, -3.0], 2.5))
+        # closest points frozen (as the term's Jacobian assumes): half of them normal offsets
+        # (point-to-plane rows), half with a tangential part (point-to-point rows)
+        frozen = FrozenReference(layout, rng)
+        return lambda x: TERMS[name](x, layout, frozen)
     return lambda x: TERMS[name](x, layout)
 
 
@@ -86,3 +91,26 @@ def test_equation_counts_follow_the_paper():
     assert counts["ratio_revolution"] == (m - 1) * (n - 2)
     assert counts["fairness"] == 3 * ((m - 2) * n + m * (n - 2))
     assert NetLayout(21, 21).paper_size == 8043
+
+
+def test_approximation_is_point_to_plane_inside_and_point_to_point_off_the_boundary():
+    """A vertex above a face slides freely along it; one beyond the boundary is pulled back."""
+    layout = NetLayout(3, 3)
+    f = np.zeros((3, 3, 3))
+    f[..., 0], f[..., 1] = np.meshgrid(np.arange(3.0), np.arange(3.0), indexing="ij")
+    f[0, 0] = (0.0, 0.0, 0.5)          # above the half plane x ≥ 0: normal offset
+    f[2, 2] = (-1.0, 2.0, 0.0)         # beyond its boundary x = 0, in its plane
+
+    class HalfPlane:
+        def closest(self, q):
+            p = q.copy()
+            p[:, 0] = np.maximum(p[:, 0], 0.0)
+            p[:, 2] = 0.0
+            return p, np.tile([0.0, 0.0, 1.0], (len(q), 1))
+
+    f = f.reshape(-1, 3)
+    phi, _ = TERMS["approximation"](layout.pack(f), layout, HalfPlane())
+    phi = phi.reshape(-1, 3)
+    assert np.allclose(phi[0], [0, 0, 0.5])        # point-to-plane: only the normal part
+    assert np.allclose(phi[8], [-1.0, 0, 0])       # off the boundary: the whole offset
+    assert np.abs(np.delete(phi, [0, 8], axis=0)).max() == 0

@@ -84,8 +84,5 @@ def test_project_fit(project, wave):
     assert vertex_distance(read_net(project / "p1").f, wave) <= 1.2e-3
 
 
-@pytest.mark.xfail(strict=True, reason="fit mode's fairness schedule shrinks a net that must "
-                   "move far (projected grid: coverage 69 % -> 17 %); solver issue, see issue 3 "
-                   "closing note")
 def test_project_fit_keeps_coverage(project):
     assert metrics(project / "p1")["coverage"]["area_fraction"] >= 0.5

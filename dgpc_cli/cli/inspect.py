@@ -61,6 +61,16 @@ def _inspect_mold(json_path: Path, **_) -> dict:
 INSPECTORS.update(mold=_inspect_mold)
 
 
+def _inspect_sheets(json_path: Path, **_) -> dict:
+    from dgpc_cli.io.sheets import read_sheets
+    from dgpc_cli.stages.nest import sheets_metrics
+
+    return sheets_metrics(read_sheets(json_path).data)
+
+
+INSPECTORS.update(sheets=_inspect_sheets)
+
+
 def artifact_kind(json_path: Path) -> str:
     doc = read_json(json_path)
     kind = doc.get("kind") if isinstance(doc, dict) else None

@@ -76,13 +76,14 @@ def _register():
     from dgpc_cli.cli.init import init
     from dgpc_cli.cli.inspect import inspect
     from dgpc_cli.cli.laths import laths
+    from dgpc_cli.cli.nest import nest
     from dgpc_cli.cli.optimize import optimize
     from dgpc_cli.cli.planarize_strips import planarize_strips_cmd
     from dgpc_cli.cli.report import report
     from dgpc_cli.cli.unfold import unfold
 
     for command in (init, optimize, extract_mold_cmd, planarize_strips_cmd, unfold, report,
-                    inspect, laths):
+                    inspect, laths, nest):
         cli.add_command(command)
 
 

@@ -16,7 +16,7 @@ from dgpc_cli.io.handles import read_handles
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import NetArtifact, read_net, write_net
 from dgpc_cli.stages.inspect import summarize
-from dgpc_cli.stages.modes import MODES, describe_weights, mode_weights
+from dgpc_cli.stages.modes import MODES, SOFT, describe_weights, mode_weights
 from dgpc_cli.stages.optimize import optimize_net
 from dgpc_cli.tolerances import tol as TOL
 
@@ -93,7 +93,7 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
         outcome = optimize_net(
             net.f, schedules,
             reference=ReferenceSurface.from_mesh(mesh) if mesh is not None else None,
-            handle_ids=handle_ids, handle_targets=handle_targets, steps=steps,
+            handle_ids=handle_ids, handle_targets=handle_targets, soft=SOFT[mode], steps=steps,
             max_iter=max_iter, tol=tol, backend=backend, progress=progress)
         bar.update(steps * max_iter - last[0])
 

@@ -100,6 +100,23 @@ class NetLayout:
         e = d / np.where(w > 0, w, 1.0)[:, None]
         return np.concatenate([f.ravel(), e.ravel(), w])
 
+    def orient_edges(self, x: np.ndarray) -> np.ndarray:
+        """x with every negative edge length flipped: ``(w, e) → (−w, −e)``.
+
+        The net constraints ``f_j − f_i − w e = 0``, ``‖f_j − f_i‖² − w² = 0`` cannot tell the two
+        apart, but the angle condition (6) can: a flipped e_ij satisfies it while the edge it
+        stands for does not (paper §5.1 counts on fairness to prevent this; we restore the sign).
+        """
+        x = x.copy()
+        nv, ne = self.n_vertices, self.n_edges
+        w = x[3 * nv + 3 * ne:]
+        neg = w < 0
+        if neg.any():
+            w[neg] = -w[neg]
+            e = x[3 * nv: 3 * nv + 3 * ne].reshape(ne, 3)
+            e[neg] = -e[neg]
+        return x
+
     def vertices(self, x: np.ndarray) -> np.ndarray:
         """Vertex positions as a grid ``(m, n, 3)``."""
         return x[: 3 * self.n_vertices].reshape(self.m, self.n, 3).copy()

@@ -12,14 +12,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from dgpc_cli.core.constraints import TERMS
+from dgpc_cli.core.constraints.isometry import isometry_data
 from dgpc_cli.core.layout import NetLayout
 from dgpc_cli.core.solver import Schedule, Term
 
-#: Terms that model the geometry asked for; the tolerance applies to them. The others
-#: (approximation, fairness) are soft: they pull, and may be left with a residual.
-HARD_TERMS = ("net", "gpc", "arclength", "equal_strip_width", "ratio_revolution", "developable",
-              "isometry", "handles")
-SOFT_TERMS = ("approximation", "fairness")
+#: Terms that pull and may be left with a residual; the tolerance applies to all others (the
+#: geometry asked for). Fairness is always soft; a mode may add approximation (a reference the
+#: net cannot lie on exactly, e.g. a nearly developable fit, paper Fig. 8).
+SOFT_TERMS = ("fairness",)
 
 
 def mean_edge_length(f: np.ndarray) -> float:
@@ -41,8 +41,8 @@ class Problem:
         Length unit of the scaled problem (the mean edge length of the input net).
     weights : dict[str, Schedule]
         Weight schedule per term name; terms with weight 0 throughout are left out.
-    w0 : (|E|,) array, optional
-        Edge lengths of the reference net for ``isometry`` (model units).
+    f0 : (m, n, 3) array, optional
+        The reference net for ``isometry`` (model units): its edge lengths and boundary angles.
     handle_ids, handle_targets : arrays, optional
         Handle vertex ids ``(l,)`` and targets ``(l, 3)`` (model units).
     reference : object with ``closest(points) -> (p, n)`` and ``scaled(s)``, optional
@@ -51,10 +51,11 @@ class Problem:
     layout: NetLayout
     scale: float
     weights: dict
-    w0: np.ndarray | None = None
+    f0: np.ndarray | None = None
     handle_ids: np.ndarray | None = None
     handle_targets: np.ndarray | None = None
     reference: object | None = None
+    soft: tuple[str, ...] = SOFT_TERMS
     _scaled_reference: object | None = field(default=None, init=False, repr=False)
 
     def active(self) -> list[str]:
@@ -68,7 +69,7 @@ class Problem:
                 continue
             if name == "handles" and self.handle_ids is None:
                 continue
-            if name == "isometry" and self.w0 is None:
+            if name == "isometry" and self.f0 is None:
                 continue
             names.append(name)
         return names
@@ -77,8 +78,8 @@ class Problem:
         lay, s = self.layout, self.scale
         fn = TERMS[name]
         if name == "isometry":
-            w0 = self.w0 / s
-            return lambda x: fn(x, lay, w0)
+            w0, cos0 = isometry_data(lay, self.f0 / s)
+            return lambda x: fn(x, lay, w0, cos0)
         if name == "handles":
             ids = self.handle_ids
             p = (self.handle_targets if targets is None else targets) / s
@@ -93,7 +94,7 @@ class Problem:
     def terms(self, handle_targets=None) -> list[Term]:
         """Bound terms for the solver; ``handle_targets`` overrides the targets (handle steps)."""
         return [Term(name, self._bind(name, handle_targets), self.weights[name],
-                     hard=name in HARD_TERMS)
+                     hard=name not in self.soft)
                 for name in self.active()]
 
     def x_from_vertices(self, f: np.ndarray) -> np.ndarray:
@@ -110,8 +111,8 @@ class Problem:
         The net is rescaled to its own mean edge length 1 first, as the paper does for R.
         """
         own = mean_edge_length(f)
-        rescaled = Problem(self.layout, own, self.weights, self.w0, self.handle_ids,
-                           self.handle_targets, self.reference)
+        rescaled = Problem(self.layout, own, self.weights, self.f0, self.handle_ids,
+                           self.handle_targets, self.reference, self.soft)
         x = rescaled.x_from_vertices(f)
         return {t.name: float(np.linalg.norm(t.func(x)[0])) for t in rescaled.terms()}
 

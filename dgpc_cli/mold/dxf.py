@@ -8,34 +8,19 @@ DXF R2010, ``$INSUNITS`` = 4 (mm). The drawing lies in the (r, h) half plane, x 
 * layer ``PIECES`` — a short tick across the profile at each end of each mold piece, and the
   piece id beside it (layer ``LABEL``).
 
-Bytes are deterministic: ezdxf's fixed metadata (dates, GUIDs) is used while writing.
+Bytes are deterministic (:func:`dgpc_cli.io.dxf.dxf_bytes`: ezdxf's fixed metadata).
 """
 
 from __future__ import annotations
 
-import io
-from contextlib import contextmanager
-
-import ezdxf
 import numpy as np
-from ezdxf import units
 from ezdxf.document import Drawing
 
-#: Length units the net may be in, and their size in mm.
-UNIT_MM = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4, "ft": 304.8}
+from ..io.dxf import UNIT_MM, dxf_bytes, new_mm_document
+
+__all__ = ["LAYERS", "UNIT_MM", "profile_dxf"]
 
 LAYERS = {"PROFILE": 7, "AXIS": 1, "PIECES": 3, "LABEL": 2}
-
-
-@contextmanager
-def _fixed_metadata():
-    """ezdxf writes dates and random GUIDs unless this option is set; set it while writing."""
-    old = ezdxf.options.write_fixed_meta_data_for_testing
-    ezdxf.options.write_fixed_meta_data_for_testing = True
-    try:
-        yield
-    finally:
-        ezdxf.options.write_fixed_meta_data_for_testing = old
 
 
 def profile_dxf(r: np.ndarray, h: np.ndarray, unit: str,
@@ -44,20 +29,12 @@ def profile_dxf(r: np.ndarray, h: np.ndarray, unit: str,
 
     ``pieces`` are ``(id, first row, last row)`` of the mold pieces, marked by ticks.
     """
-    with _fixed_metadata():                 # creation and writing both stamp dates and GUIDs
-        doc = _profile_doc(np.asarray(r, dtype=float) * UNIT_MM[unit],
-                           np.asarray(h, dtype=float) * UNIT_MM[unit], pieces)
-        stream = io.StringIO()
-        doc.write(stream)
-    return doc.encode(stream.getvalue())
+    return dxf_bytes(lambda: _profile_doc(np.asarray(r, dtype=float) * UNIT_MM[unit],
+                                          np.asarray(h, dtype=float) * UNIT_MM[unit], pieces))
 
 
 def _profile_doc(r_mm: np.ndarray, h_mm: np.ndarray, pieces) -> Drawing:
-    doc = ezdxf.new("R2010", setup=["linetypes"], units=units.MM)
-    doc.header["$INSUNITS"] = units.MM
-    doc.header["$MEASUREMENT"] = 1
-    for name, color in LAYERS.items():
-        doc.layers.add(name, color=color)
+    doc = new_mm_document(LAYERS)
     msp = doc.modelspace()
     msp.add_lwpolyline(np.column_stack([r_mm, h_mm]).tolist(), format="xy",
                        dxfattribs={"layer": "PROFILE"})

@@ -10,7 +10,16 @@ import numpy as np
 from dgpc_cli.io.mesh import write_mesh_obj
 from dgpc_cli.io.net import NetArtifact
 from dgpc_cli.surfaces.profiles import BUILTIN_PROFILES, profile_from_spec
-from dgpc_cli.surfaces.revolution import revolution_mesh, revolution_net, surface_record
+from dgpc_cli.surfaces.revolution import (
+    extended,
+    revolution_mesh,
+    revolution_net,
+    surface_record,
+)
+
+#: The reference mesh of ``--reference-out`` prolongs the profile by this fraction of its
+#: length at both ends, so that a fitted net has room to move beyond its initial end rows.
+REFERENCE_MARGIN = 0.1
 
 
 @dataclass
@@ -26,9 +35,10 @@ def init_revolution(profile: str, rows: int, cols: int, *, span_deg: float = 180
                     around: int = 360) -> InitResult:
     """An ``rows × cols`` net on a surface of revolution, meridians as u-lines (Fig. 3, 11).
 
-    ``profile`` is a built-in name or a CSV file with header ``r,h``. With ``reference_out`` the
-    triangulated surface (``around`` segments per turn, the profile resampled finely) is
-    returned too, to be written beside the net; the net's ``data.reference`` names it.
+    ``profile`` is a built-in name or a CSV file with header ``r,h``. With ``reference_out``
+    the triangulated surface (``around`` segments per turn, the profile resampled finely and
+    prolonged by ``REFERENCE_MARGIN`` at both ends) is returned too, to be written beside the
+    net; the net's ``data.reference`` names it.
     """
     prof = profile_from_spec(profile)
     f = revolution_net(prof, rows, cols, span_deg=span_deg, twist=twist)
@@ -41,7 +51,7 @@ def init_revolution(profile: str, rows: int, cols: int, *, span_deg: float = 180
     data = {"surface": surface_record(prof, span_deg, twist)}
     reference_obj = None
     if reference_out is not None:
-        vertices, faces = revolution_mesh(prof, around=around)
+        vertices, faces = revolution_mesh(extended(prof, REFERENCE_MARGIN), around=around)
         reference_obj = write_mesh_obj(reference_out, vertices, faces)
         data["reference"] = {"path": str(reference_out)}
     net = NetArtifact(f=np.asarray(f, dtype=float), parameters=parameters, inputs=inputs,

@@ -67,8 +67,7 @@ def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact 
     handles = net.data.get("handles")
     problem = Problem(
         NetLayout(m, n), mean_edge_length(f), weights,
-        w0=(np.linalg.norm(NetLayout(m, n).edge_vectors(against.f), axis=1)
-            if against is not None else None),
+        f0=against.f if against is not None else None,
         handle_ids=np.asarray(handles["ids"], dtype=np.int64) if handles else None,
         handle_targets=np.asarray(handles["targets"], dtype=float) if handles else None,
         reference=ReferenceSurface.from_mesh(reference) if reference is not None else None,

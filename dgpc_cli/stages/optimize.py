@@ -56,6 +56,7 @@ def optimize_net(
     handle_ids: np.ndarray | None = None,
     handle_targets: np.ndarray | None = None,
     isometry_to: np.ndarray | None = None,
+    soft: tuple[str, ...] = ("fairness",),
     steps: int = 1,
     max_iter: int = 200,
     tol: float = 1e-10,
@@ -66,20 +67,21 @@ def optimize_net(
 
     Handles are reached in ``steps`` increments, as a dragged handle would be: step s pulls the
     handles to ``start + s/steps · (target − start)``, and every step is a guided-projection run
-    (the last one must reach ``tol``). ``isometry_to`` is the net whose edge lengths w⁰ the
-    isometry term keeps (default: the input). The returned ``R`` is the paper's constraint error
-    at the returned vertices, net rescaled to mean edge length 1 (§6.2.5).
+    (the last one must reach ``tol``). ``isometry_to`` is the net whose edge lengths w⁰ (and
+    boundary angles) the isometry term keeps (default: the input). ``soft`` names the terms
+    the tolerance does not apply to (see ``modes.SOFT``). The returned ``R`` is the paper's
+    constraint error at the returned vertices, net rescaled to mean edge length 1 (§6.2.5).
     """
     f = np.asarray(f, dtype=float)
     m, n = f.shape[:2]
     layout = NetLayout(m, n)
     if steps < 1:
         raise DgpcError("--steps must be at least 1", source="--steps")
-    w0 = layout.edge_vectors(f if isometry_to is None else isometry_to)
     problem = Problem(layout, mean_edge_length(f), weights,
-                      w0=np.linalg.norm(w0, axis=1) if "isometry" in weights else None,
+                      f0=(f if isometry_to is None else np.asarray(isometry_to, dtype=float))
+                      if "isometry" in weights else None,
                       handle_ids=handle_ids, handle_targets=handle_targets,
-                      reference=reference)
+                      reference=reference, soft=soft)
     if not problem.active():
         raise DgpcError("no constraint term is active", source="--weight")
     x = problem.x_from_vertices(f)
@@ -98,7 +100,7 @@ def optimize_net(
 
         result = guided_projection(x, problem.terms(targets), max_iter=max_iter, tol=tol,
                                    backend=backend, workspace=workspace,
-                                   callback=step_progress)
+                                   retract=layout.orient_edges, callback=step_progress)
         log.info("step %d/%d: %s after %d iterations (%s)", s, steps, result.status,
                  result.iterations, result.message)
         workspace, x = result.workspace, result.x

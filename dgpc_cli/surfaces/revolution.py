@@ -69,6 +69,27 @@ def default_along(profile: Profile, around: int = 360) -> int:
     return int(np.clip(math.ceil(profile.length / step) + 1, MIN_ALONG, MAX_ALONG))
 
 
+def extended(profile: Profile, margin: float) -> Profile:
+    """The profile prolonged at both ends along its end tangents by ``margin`` × its length.
+
+    A reference for fitting needs room beyond the net: a net whose end rows sit on the
+    reference's boundary cannot move along it. The extension stops short of the axis (r keeps
+    at least half its end value).
+    """
+    if margin <= 0:
+        return profile
+    r, h = np.asarray(profile.r, float), np.asarray(profile.h, float)
+    ext = margin * profile.length
+    ends = []
+    for i, j in ((0, 1), (-1, -2)):
+        t = np.array([r[i] - r[j], h[i] - h[j]])
+        t /= np.linalg.norm(t)
+        reach = ext if t[0] >= 0 else min(ext, 0.5 * r[i] / -t[0])
+        ends.append((r[i] + reach * t[0], h[i] + reach * t[1]))
+    return Profile(profile.name, np.concatenate([[ends[0][0]], r, [ends[1][0]]]),
+                   np.concatenate([[ends[0][1]], h, [ends[1][1]]]))
+
+
 def revolution_mesh(profile: Profile, *, around: int = 360,
                     along: int | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The whole surface of revolution (360°) as a triangle mesh for fitting.

@@ -27,7 +27,19 @@ log = logging.getLogger(__name__)
 #: Default regularization ε of the normal equations, for a net scaled to mean edge length 1.
 EPSILON = 1e-3
 #: Bounds and factors of the Levenberg–Marquardt control of ε².
-MU_MIN, MU_MAX, MU_DOWN, MU_UP = 1e-10, 1e4, 1 / 3, 4.0
+MU_MIN, MU_MAX, MU_DOWN, MU_UP = 1e-16, 1e4, 0.1, 4.0
+#: Once every weight has settled, ε² is not lowered below ``clip(MU_FLOOR_C · R², MU_MIN,
+#: MU_FAR)``: damped far from the solution, (nearly) undamped Gauss–Newton close to it, which
+#: singular roots need (see :func:`guided_projection`). While a schedule still runs, ε² stays
+#: at least ε²₀: the guided phase of Tang et al.
+MU_FLOOR_C, MU_FAR = 1e-4, 1e-10
+#: "Near the solution": every weight settled and the hard residual below NEAR. Only there is
+#: ε² lowered below ε²₀ and acceptance relaxed; farther away it is guided projection.
+NEAR = 1e-3
+#: Non-monotone (watchdog) acceptance: a step is taken while the objective stays below KAPPA²
+#: times its current value; after WATCHDOG settled iterations without a new best objective the
+#: iterate returns to the best point and the next WATCHDOG iterations are monotone.
+KAPPA, WATCHDOG = 1e3, 30
 
 
 @dataclass(frozen=True)
@@ -123,15 +135,19 @@ def guided_projection(
     stagnation_ratio: float = 0.999,
     backend: str = "auto",
     workspace: _Workspace | None = None,
+    retract: Callable | None = None,
     callback: Callable | None = None,
 ) -> SolverResult:
     """Run guided projection from ``x0`` until R ≤ ``tol``, stagnation, or ``max_iter``.
 
-    The regularization ε² is controlled as in Levenberg–Marquardt: a step that lowers the
-    weighted objective Σ w_t ‖φ_t‖² is taken and ε² shrinks (down to ``MU_MIN``); a step that
-    does not is refused and ε² grows. Near-flexible constraint sets (isometry with the angle
-    condition (6) has far more infinitesimal than finite flexes) then converge in tens of
-    iterations instead of crawling along the valley as with a fixed ε.
+    While a weight schedule runs (e.g. fairness 0.01→0) this is Tang et al.'s guided projection
+    with ε fixed at ``epsilon``: the regularization keeps the net near its previous position.
+    Once every weight has settled, ε² is controlled as in Levenberg–Marquardt and allowed down
+    to ~1e-4·R²: near-flexible constraint sets (isometry with the angle condition (6) has far
+    more infinitesimal than finite flexes) have singular roots, where damped steps crawl (the
+    residual sits on singular values ~1e-8) while nearly undamped Gauss–Newton converges
+    linearly (distance halves per step). Undamped steps may overshoot first, so acceptance is
+    non-monotone (objective may grow by KAPPA²), with a watchdog that returns to the best point.
 
     Parameters
     ----------
@@ -147,6 +163,9 @@ def guided_projection(
     stagnation_window, stagnation_ratio : int, float
         Stop as ``stagnated`` when the last ``window`` iterations (once every schedule has
         settled) did not bring the weighted objective below ``ratio`` times its best value.
+    retract : callable, optional
+        ``retract(x) -> x`` applied to every trial point, e.g. to restore sign conventions of
+        auxiliary variables that leave every residual unchanged but the geometry's meaning.
     callback : callable, optional
         ``callback(k, record)`` after every iteration (progress bars).
     """
@@ -154,9 +173,11 @@ def guided_projection(
     history: list[dict] = []
     objective: list[float] = []
     status, message = "max_iter", f"iteration limit {max_iter} reached"
-    mu = epsilon * epsilon
+    mu0 = mu = epsilon * epsilon
     soft_active = any(not t.hard and t.weight.end > 0 for t in terms)
     phis, jacs = _evaluate(terms, x)
+    best = None                                   # (objective, x, phis, jacs, iteration)
+    monotone_until = -1
     k = 0
     while True:
         t0 = time.perf_counter()
@@ -185,7 +206,15 @@ def guided_projection(
             message = f"hard residual {R:.3g} stopped falling above tol {tol:g}"
             break
         if settled:
-            objective.append(obj)
+            if best is None or obj < best[0]:
+                best = (obj, x, phis, jacs, k)
+            elif k - best[4] >= WATCHDOG:         # watchdog: back to the best point
+                obj, x, phis, jacs, _ = best
+                best = (obj, x, phis, jacs, k)
+                R = _norm(terms, phis, True)
+                mu = max(mu * 100.0, MU_FAR)
+                monotone_until = k + WATCHDOG
+            objective.append(best[0])
 
         rows, cols, vals = _stack(jacs, phis)
         phi = np.concatenate(phis)
@@ -193,16 +222,25 @@ def guided_projection(
         if workspace is None or not workspace.pattern.same_pattern(rows, cols):
             workspace = _Workspace(rows, cols, phi.size, x.size, backend)
         pattern = workspace.pattern
-        g = pattern.gradient(vals, row_w, phi)
         solver = workspace.solver
-        solver.factorize(pattern.values(vals, row_w, mu))
-        dx = solver.solve(-g)
+        try:
+            solver.factorize(pattern.values(vals, row_w, mu))
+        except Exception:  # noqa: BLE001 - numerically singular at a tiny ε²: damp more
+            mu *= 100.0
+            k += 1
+            continue
+        dx = solver.solve(-pattern.gradient(vals, row_w, phi))
+        if retract is not None:
+            dx = retract(x + dx) - x
         trial = _evaluate(terms, x + dx)
         trial_obj = _objective(weights, trial[0])
-        if trial_obj < obj:
+        near = settled and R < NEAR
+        relaxed = near and k >= monotone_until
+        if np.isfinite(trial_obj) and trial_obj < (KAPPA * KAPPA * obj if relaxed else obj):
             x = x + dx
             phis, jacs = trial
-            mu = max(mu * MU_DOWN, MU_MIN)
+            floor = min(MU_FAR, max(MU_MIN, MU_FLOOR_C * R * R)) if near else mu0
+            mu = max(mu * MU_DOWN, floor)
             record["step"] = float(np.linalg.norm(dx))
         else:
             mu *= MU_UP
@@ -215,6 +253,11 @@ def guided_projection(
         if callback is not None:
             callback(k, record)
         k += 1
+    if best is not None and best[0] < _objective([t.weight(k) for t in terms], phis):
+        _, x, phis, _, _ = best                   # a relaxed step may have left the best
+        residuals = _norms(terms, phis)
+        R = _norm(terms, phis, True)
+        record = {**record, "R": R, "residuals": residuals}
     history.append(record)
     return SolverResult(x=x, status=status, message=message, iterations=k, R=R,
                         residuals=residuals, history=history, workspace=workspace,

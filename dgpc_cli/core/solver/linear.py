@@ -20,6 +20,9 @@ import scipy.sparse.linalg as spla
 
 from dgpc_cli.core.solver.normal_matrix import NormalMatrix
 
+#: MKL's threading domain of PARDISO (mkl_service.h).
+MKL_DOMAIN_PARDISO = 4
+
 
 class PardisoSPD:
     name = "pardiso"
@@ -28,6 +31,10 @@ class PardisoSPD:
         from pypardiso.pardiso_wrapper import PyPardisoSolver
 
         self._solver = PyPardisoSolver(mtype=2)
+        # One thread: PARDISO's threaded factorization rounds differently from run to run, and
+        # the artifacts must be byte-deterministic (SPEC §3); near singular roots the solver
+        # amplifies such differences. Only the PARDISO domain is pinned (MKL_DOMAIN_PARDISO).
+        self._solver.libmkl.MKL_Domain_Set_Num_Threads(1, MKL_DOMAIN_PARDISO)
         self._A = pattern.upper(np.zeros(pattern.nnz))
         self._A.has_sorted_indices = True
         self._analysed = False

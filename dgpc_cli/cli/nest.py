@@ -1,0 +1,117 @@
+"""``dgpc nest``: the flat parts on cut sheets, DXF + previews, and the panel-to-mold map."""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+import click
+
+from dgpc_cli.cli.options import check_writable, force_opt, output_opt, progressbar
+from dgpc_cli.io.artifact import artifact_paths, file_input
+from dgpc_cli.io.atomic import write_files
+from dgpc_cli.io.dxf import UNIT_MM
+from dgpc_cli.io.flat import read_flat
+from dgpc_cli.io.sheets import extra_path, sheets_files
+from dgpc_cli.nesting.blf import Sheet
+from dgpc_cli.stages.nest import (
+    ENGINES,
+    mold_map,
+    nest_parts,
+    parse_rotations,
+    parse_sheet,
+    parts_csv,
+    sheet_drawings,
+    sheets_data,
+    sheets_metrics,
+    sheets_obj,
+)
+
+log = logging.getLogger(__name__)
+
+
+def _parsed(parser):
+    def callback(ctx, param, value):
+        try:
+            return parser(value)
+        except ValueError as err:
+            raise click.BadParameter(str(err), ctx=ctx, param=param) from None
+    return callback
+
+
+@click.command(short_help="Nest the flat parts on cut sheets (DXF, SVG, PNG).")
+@click.argument("stem", type=click.Path(path_type=Path))
+@click.option("--mold", "mold_stem", type=click.Path(path_type=Path), metavar="MOLD",
+              help="A mold artifact: also write the panel-to-mold map DXF.")
+@click.option("--sheet", "sheet_size", required=True, callback=_parsed(parse_sheet),
+              metavar="WIDTHxHEIGHT", help="Sheet size in mm, e.g. 2500x1250.")
+@click.option("--margin", type=click.FloatRange(min=0), default=10.0, show_default=True,
+              help="Free border of each sheet (mm).")
+@click.option("--spacing", type=click.FloatRange(min=0), default=3.0, show_default=True,
+              help="Least distance between parts, the kerf (mm).")
+@click.option("--rotations", default="0,180", show_default=True,
+              callback=_parsed(parse_rotations), metavar="DEG,DEG,...",
+              help="Allowed rotations in degrees (grain or rolling direction).")
+@click.option("--units", type=click.Choice(list(UNIT_MM)), default="mm", show_default=True,
+              help="The unit of the net's coordinates.")
+@click.option("--scale", type=click.FloatRange(min=0, min_open=True), default=1.0,
+              show_default=True,
+              help="Model scale: 1 net unit is SCALE x UNITS in the DXF (mm).")
+@click.option("--engine", type=click.Choice(ENGINES), default="fill", show_default=True,
+              help="'fill': deterministic no-fit-polygon fill; 'spyrrow': spyrrow's strip "
+                   "packer sheet by sheet (time-bounded, see --time-limit).")
+@click.option("--time-limit", type=click.FloatRange(min=0, min_open=True), default=10.0,
+              show_default=True, metavar="SEC",
+              help="spyrrow's time budget per sheet (engine spyrrow).")
+@click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True,
+              help="Random seed (engine spyrrow).")
+@output_opt
+@force_opt
+@click.pass_context
+def nest(ctx, stem, mold_stem, sheet_size, margin, spacing, rotations, units, scale, engine,
+         time_limit, seed, output, force):
+    """Place every part of the flat artifact STEM (each congruence class in its quantity) on
+    as few sheets as it can, and write the sheets artifact -o SHEETS: SHEETS.json, .obj,
+    .parts.csv and per sheet SHEETS.sheetNN.dxf/.svg/.png (with --mold, .moldmap.dxf).
+
+    Coordinates: 1 net unit = SCALE x UNITS, in mm in every DXF; sheet, margin and spacing in
+    mm. Prints the written JSON path.
+    """
+    json_path, _ = artifact_paths(stem)
+    check_writable(output, force, extra_path(output, "parts_csv"))
+    flat = read_flat(stem)
+    mold = None
+    if mold_stem is not None:
+        from dgpc_cli.io.mold import read_mold
+
+        mold = read_mold(mold_stem)
+    sheet = Sheet(sheet_size[0], sheet_size[1], margin, spacing)
+    n = len(flat.parts)
+    with progressbar(ctx, length=(2 * n if engine == "fill" else n),
+                     label="nesting") as bar:
+        result = nest_parts(flat.parts, sheet, rotations, units=units, scale=scale,
+                            engine=engine, time_limit=time_limit, seed=seed,
+                            progress=bar.update)
+    extra: dict[str, bytes] = {"parts_csv": parts_csv(result)}
+    drawings = sheet_drawings(result)
+    for s, (dxf, svg, png) in enumerate(drawings):
+        extra.update({f"sheet{s + 1:02d}_dxf": dxf, f"sheet{s + 1:02d}_svg": svg,
+                      f"sheet{s + 1:02d}_png": png})
+    out_json, _ = artifact_paths(output)
+    folder = out_json.resolve().parent
+    inputs = {"flat": file_input(json_path, folder)}
+    if mold is not None:
+        extra["moldmap_dxf"] = mold_map(mold, scale * UNIT_MM[units])
+        inputs["mold"] = file_input(artifact_paths(mold_stem)[0], folder)
+    data = sheets_data(result, units=units, scale=scale, engine=engine,
+                       time_limit=time_limit, seed=seed)
+    parameters = {"sheet": f"{sheet.width:g}x{sheet.height:g}", "margin": margin,
+                  "spacing": spacing, "rotations": rotations, "units": units, "scale": scale,
+                  "engine": engine, "time_limit": time_limit, "seed": seed,
+                  "mold": mold_stem is not None}
+    files = sheets_files(output, data=data, extra=extra, obj=sheets_obj(result),
+                         inputs=inputs, parameters=parameters, metrics=sheets_metrics(data),
+                         status={"sheet_count": result.sheet_count,
+                                 "deterministic": engine == "fill"})
+    write_files(files, force=force)
+    click.echo(str(out_json))

@@ -1,0 +1,114 @@
+"""The ``sheets`` artifact (SPEC §3, §6 nest): STEM.json + STEM.obj + per-sheet files.
+
+Files, all listed in ``data.files`` (key → relative path and sha256); the file of key ``k`` is
+``STEM.<k with '_' as '.'>``:
+
+* ``sheetNN_dxf``, ``sheetNN_svg``, ``sheetNN_png`` — per sheet the cut DXF and its previews
+  (:mod:`dgpc_cli.nesting.drawing`);
+* ``parts_csv`` — one line per part: part id → 3-D strip (its net columns) → sheet → position;
+* ``moldmap_dxf`` — with ``--mold``: the panel-to-mold map sheet.
+
+``data`` holds the sheet (width, height, margin, spacing in mm; the net's ``units``, ``scale``
+and the resulting ``mm_per_unit``), the allowed rotations, the engine, seed and time limit,
+every placement (``part``, ``class``, ``strip``, ``sheet`` index, ``rotation`` in degrees,
+``translation`` in mm: ``x_sheet = R(rotation) · mm_per_unit · x_part + translation``), per
+sheet its parts and utilization, the overall utilization and the sheet count. The OBJ holds the
+sheets side by side (sheet i shifted by i·1.1·width along x), z = 0: per sheet an object with
+the sheet outline and each part's outline as closed polylines (``l``), one group per part.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import DgpcError
+from .artifact import (
+    artifact_paths,
+    dumps_json,
+    load_envelope,
+    make_envelope,
+    relative_input,
+    resolve_input,
+    sha256_bytes,
+)
+from .jsonable import load_schema, validate
+
+KIND = "sheets"
+#: Gap between sheets in the OBJ, as a fraction of the sheet width.
+OBJ_SHEET_GAP = 0.1
+
+
+def extra_path(stem: str | Path, key: str) -> Path:
+    """``STEM.<key with '_' → '.'>``, e.g. ``sheet01_dxf`` → ``STEM.sheet01.dxf``."""
+    json_path, _ = artifact_paths(stem)
+    return Path(str(json_path)[: -len(".json")] + "." + key.replace("_", "."))
+
+
+def sheets_files(stem: str | Path, *, data: dict, extra: dict[str, bytes], obj: bytes,
+                 inputs: dict, parameters: dict, metrics: dict, status: dict
+                 ) -> dict[Path, bytes]:
+    """The bytes of every file of the artifact (nothing written), the JSON schema-checked."""
+    json_path, obj_path = artifact_paths(stem)
+    folder = json_path.resolve().parent
+    paths = {key: extra_path(stem, key) for key in extra}
+    data = {**data, "obj": obj_path.name, "obj_sha256": sha256_bytes(obj),
+            "files": {k: relative_input(paths[k], folder, extra[k]) for k in sorted(extra)}}
+    doc = make_envelope(KIND, inputs=inputs, parameters=parameters, data=data,
+                        metrics=metrics, status=status)
+    json_bytes = dumps_json(doc)
+    validate(json.loads(json_bytes), load_schema(KIND), json_path)
+    return {json_path: json_bytes, obj_path: obj,
+            **{paths[k]: extra[k] for k in sorted(extra)}}
+
+
+@dataclass
+class SheetsArtifact:
+    """A sheets artifact read back (``data`` as in the JSON) and where its files are."""
+
+    path: Path
+    parameters: dict
+    inputs: dict
+    data: dict
+    metrics: dict
+    status: dict
+
+    def file(self, key: str) -> Path:
+        return resolve_input(self.data["files"][key], self.path)
+
+
+def _check_file(record: dict, json_path: Path, field: str) -> None:
+    path = resolve_input(record, json_path)
+    try:
+        data = path.read_bytes()
+    except OSError as e:
+        raise DgpcError(f"cannot read ({field}): {e.strerror or e}", source=path) from None
+    if sha256_bytes(data) != record["sha256"]:
+        raise DgpcError(f"does not match {json_path.name}: its sha256 differs from {field}",
+                        source=path)
+
+
+def read_sheets(stem: str | Path) -> SheetsArtifact:
+    """Read and validate a sheets artifact: envelope and schema, the sheet indices and counts,
+    the OBJ and every listed file present and unchanged (sha256)."""
+    json_path, _ = artifact_paths(stem)
+    doc = load_envelope(json_path, KIND)
+    data = doc["data"]
+    n = data["sheet_count"]
+    if len(data["sheets"]) != n or len(data["utilization"]["per_sheet"]) != n:
+        raise DgpcError(f"data.sheets: {len(data['sheets'])} sheets and "
+                        f"{len(data['utilization']['per_sheet'])} utilizations, but "
+                        f"sheet_count = {n}", source=json_path)
+    for k, p in enumerate(data["placements"]):
+        if p["sheet"] >= n:
+            raise DgpcError(f"data.placements[{k}].sheet: {p['sheet']} but there are {n} "
+                            "sheets", source=json_path)
+    ids = [p["part"] for p in data["placements"]]
+    if len(set(ids)) != len(ids):
+        raise DgpcError("data.placements: a part is placed more than once", source=json_path)
+    _check_file({"path": data["obj"], "sha256": data["obj_sha256"]}, json_path, "data.obj")
+    for key, record in data["files"].items():
+        _check_file(record, json_path, f"data.files.{key}")
+    return SheetsArtifact(path=json_path, parameters=doc["parameters"], inputs=doc["inputs"],
+                          data=data, metrics=doc["metrics"], status=doc["status"])

@@ -1,0 +1,153 @@
+"""Parts to nest, in mm, and the geometry of placing them (SPEC §6 nest).
+
+A placement is a rotation by ``rotation`` degrees about the part's own origin followed by a
+translation: ``x_sheet = R(rotation) · x_part + translation`` with ``x_part`` the flat part's
+coordinates already scaled to mm (``x_part = k · x_model``, ``k = scale · mm per unit``).
+Sheet coordinates: origin at the sheet's lower-left corner, x along the width, y along the
+height.
+
+No-fit polygons come from a convex decomposition of each part (the developed strip's quads
+``A_u A_(u+1) B_(u+1) B_u``, or a constrained triangulation) and pairwise convex Minkowski sums,
+all vectorized with shapely.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import shapely
+from shapely.geometry import Polygon
+
+#: Clearance added to every spacing and margin (mm): keeps touching parts apart by more than
+#: floating-point noise, far below any cutter's precision.
+CLEARANCE_MM = 1e-4
+
+#: Parts whose outlines (in their own coordinates, same vertex count) differ by at most this
+#: (mm) share their no-fit polygons; the difference is added to the spacing.
+GROUP_TOL_MM = 1e-3
+
+
+def rotation_matrix(deg: float) -> np.ndarray:
+    """2×2 rotation by ``deg`` degrees, exact for multiples of 90°."""
+    quarter = float(deg) / 90.0
+    if quarter == round(quarter):
+        c, s = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)][int(round(quarter)) % 4]
+    else:
+        a = np.radians(deg)
+        c, s = float(np.cos(a)), float(np.sin(a))
+    return np.array([[c, -s], [s, c]])
+
+
+def transform(points: np.ndarray, rotation: float, translation) -> np.ndarray:
+    """``R(rotation) · points + translation`` for ``points (..., 2)``."""
+    return np.asarray(points, float) @ rotation_matrix(rotation).T + np.asarray(translation,
+                                                                                 float)
+
+
+@dataclass
+class Part:
+    """One flat part in mm: ``outline (n, 2)`` ccw, ``score`` open polylines, ``label`` point,
+    ``pieces (k, 4, 2)`` convex pieces (triangles repeat a vertex), ``group`` index of parts
+    sharing no-fit polygons and ``deviation`` from the group's leader (mm)."""
+
+    id: str
+    strip: int
+    cls: str
+    outline: np.ndarray
+    score: list
+    label: np.ndarray
+    area: float
+    width: float
+    pieces: np.ndarray = field(repr=False)
+    group: int = 0
+    deviation: float = 0.0
+    rotations: tuple | None = None
+
+
+def _convex(poly: np.ndarray) -> bool:
+    p = Polygon(poly)
+    return p.is_valid and abs(p.convex_hull.area - p.area) <= 1e-12 * max(p.area, 1e-300)
+
+
+def convex_pieces(outline: np.ndarray, geodesics=None) -> np.ndarray:
+    """Convex pieces ``(k, 4, 2)`` covering ``outline`` exactly: the strip's quads when the
+    outline is A forwards then B backwards, else a constrained Delaunay triangulation."""
+    outline = np.asarray(outline, float)
+    area = Polygon(outline).area
+    if geodesics is not None:
+        A, B = (np.asarray(g, float) for g in geodesics)
+        if len(A) == len(B) and np.array_equal(np.concatenate([A, B[::-1]]), outline):
+            quads = np.stack([A[:-1], A[1:], B[1:], B[:-1]], axis=1)
+            pieces = []
+            for q in quads:
+                if _convex(q):
+                    pieces.append(q)
+                else:
+                    pieces += [q[[0, 1, 2, 2]], q[[0, 2, 3, 3]]]
+            pieces = np.asarray(pieces)
+            if abs(sum(Polygon(p).area for p in pieces) - area) <= 1e-9 * area:
+                return pieces
+    tris = shapely.get_parts(shapely.constrained_delaunay_triangles(Polygon(outline)))
+    coords = np.stack([shapely.get_coordinates(t)[:3] for t in tris])
+    return coords[:, [0, 1, 2, 2]]
+
+
+def prepare_parts(flat_parts: list[dict], k: float) -> list[Part]:
+    """The flat artifact's part records scaled by ``k`` (mm per model unit), grouped."""
+    parts = []
+    for rec in flat_parts:
+        outline = k * np.asarray(rec["outline"], float)
+        geod = [k * np.asarray(g, float) for g in rec["geodesics"]]
+        poly = Polygon(outline)
+        parts.append(Part(
+            id=rec["id"], strip=int(rec["strip"]), cls=rec["class"], outline=outline,
+            score=[k * np.asarray(s, float) for s in rec["score"]],
+            label=k * np.asarray(rec["label"], float), area=float(poly.area),
+            width=float(poly.area / max(k * rec["length"], 1e-300)),
+            pieces=convex_pieces(outline, geod)))
+    leaders: list[int] = []
+    for i, p in enumerate(parts):
+        for g, j in enumerate(leaders):
+            q = parts[j].outline
+            if q.shape == p.outline.shape:
+                dev = float(np.max(np.linalg.norm(q - p.outline, axis=1)))
+                if dev <= GROUP_TOL_MM:
+                    p.group, p.deviation = g, dev
+                    break
+        else:
+            p.group = len(leaders)
+            leaders.append(i)
+    return parts
+
+
+def disk(radius: float, sides: int = 32) -> np.ndarray:
+    """A regular polygon ``(sides, 2)`` circumscribing the circle of ``radius`` (its edges
+    touch the circle, so it contains the disk)."""
+    a = (np.arange(sides) + 0.5) * (2 * np.pi / sides)
+    return (radius / np.cos(np.pi / sides)) * np.column_stack([np.cos(a), np.sin(a)])
+
+
+def minkowski_nfp(pieces_a: np.ndarray, rot_a: float, pieces_b: np.ndarray, rot_b: float,
+                  clearance: float) -> Polygon:
+    """No-fit polygon of part b (rotated ``rot_b``) around part a (rotated ``rot_a``, at the
+    origin): the translations of b that bring it closer than ``clearance`` to a.
+
+    ``(a ⊕ D ⊕ −b)`` with ``D`` a polygon containing the disk of radius ``clearance``, as the
+    union of the convex hulls of all pairwise piece sums (exact up to ``D``; GEOS's buffer
+    is not used: it simplifies its input by 1 % of the distance).
+    """
+    pa = pieces_a @ rotation_matrix(rot_a).T                    # (na, 4, 2)
+    if clearance > 0:
+        pa = (pa[:, :, None, :] + disk(clearance)[None, None, :, :]).reshape(len(pa), -1, 2)
+    pb = -(pieces_b @ rotation_matrix(rot_b).T)                 # (nb, 4, 2)
+    sums = (pa[:, None, :, None, :] + pb[None, :, None, :, :]).reshape(
+        len(pa) * len(pb), -1, 2)
+    hulls = shapely.convex_hull(shapely.multipoints(sums))
+    return shapely.union_all(hulls)
+
+
+def bounds(points: np.ndarray) -> tuple[float, float, float, float]:
+    """``(xmin, ymin, xmax, ymax)`` of ``points (n, 2)``."""
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])

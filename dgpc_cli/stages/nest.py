@@ -1,0 +1,253 @@
+"""``dgpc nest``: place the flat parts on cut sheets (SPEC §6 nest, §7 utilization, §10).
+
+Units: the flat parts are in the net's units; ``units`` names that unit (mm, cm, m, in, ft) and
+``scale`` multiplies the model first, so 1 model unit = ``scale × (mm per unit)`` mm in every
+DXF. Sheet size, margin and spacing are in mm.
+
+Engines: ``fill`` (default) — the deterministic no-fit-polygon fill of
+:mod:`dgpc_cli.nesting.blf` with congruent parts paired (:mod:`dgpc_cli.nesting.pairs`): the
+same input gives the same bytes, whatever the machine; ``spyrrow`` — sheet after sheet with
+spyrrow's strip packer (:mod:`dgpc_cli.nesting.strip`), seeded, one worker, reproducible only
+when its time budget is not what stops it. Either result is checked independently with shapely
+(inside the margin, spacing kept) before anything is written.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import logging
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from shapely.geometry import Polygon
+
+from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.dxf import UNIT_MM
+from dgpc_cli.nesting.blf import Placement, Sheet, fill_sheets, inner_fit
+from dgpc_cli.nesting.drawing import mold_map_dxf, placed_part, previews, sheet_dxf
+from dgpc_cli.nesting.geometry import Part, bounds, prepare_parts, transform
+from dgpc_cli.nesting.strip import spyrrow_sheets
+
+log = logging.getLogger(__name__)
+
+ENGINES = ("fill", "spyrrow")
+#: Tolerance of the independent layout check (mm).
+CHECK_TOL_MM = 1e-7
+
+
+def parse_rotations(text: str) -> list[float]:
+    """``"0,180"`` → ``[0.0, 180.0]``: distinct angles in degrees (ValueError otherwise)."""
+    items = [t.strip() for t in str(text).split(",")]
+    try:
+        values = [float(t) for t in items if t]
+    except ValueError:
+        raise ValueError(f"{text!r} is not a comma-separated list of angles in degrees, "
+                         "e.g. 0,180") from None
+    if not values or not all(np.isfinite(values)):
+        raise ValueError(f"{text!r}: give at least one finite angle in degrees, e.g. 0,180")
+    norm = [round(v % 360.0, 9) % 360.0 for v in values]
+    if len(set(norm)) != len(norm):
+        raise ValueError(f"{text!r}: an angle is repeated (modulo 360)")
+    return values
+
+
+def parse_sheet(text: str) -> tuple[float, float]:
+    """``"2500x1250"`` → ``(2500.0, 1250.0)`` mm (ValueError unless both are > 0)."""
+    parts = str(text).lower().replace("×", "x").split("x")
+    try:
+        w, h = (float(p) for p in parts)
+    except ValueError:
+        raise ValueError(f"{text!r} is not WIDTHxHEIGHT in mm, e.g. 2500x1250") from None
+    if not (np.isfinite(w) and np.isfinite(h) and w > 0 and h > 0):
+        raise ValueError(f"{text!r}: width and height must be > 0 mm")
+    return w, h
+
+
+@dataclass
+class NestResult:
+    """Parts (mm), their placements and the sheet; per-sheet and overall utilization."""
+
+    parts: list[Part]
+    placements: list[Placement]
+    sheet: Sheet
+    rotations: list[float]
+    utilization: list[float]
+    overall: float
+    engine_info: dict
+
+    @property
+    def sheet_count(self) -> int:
+        return len(self.utilization)
+
+
+def check_fit(parts: list[Part], sheet: Sheet, rotations: list[float]) -> None:
+    """DgpcError naming the first part that fits inside the margin with no allowed rotation."""
+    for p in parts:
+        if all(inner_fit(p, r, sheet) is None for r in rotations):
+            x0, y0, x1, y1 = bounds(p.outline)
+            raise DgpcError(
+                f"part {p.id} ({x1 - x0:.1f} x {y1 - y0:.1f} mm) does not fit on the "
+                f"{sheet.width:g} x {sheet.height:g} mm sheet inside its {sheet.margin:g} mm "
+                f"margin with rotations {', '.join(f'{r:g}' for r in rotations)}",
+                source="--sheet")
+
+
+def check_layout(outlines: list[np.ndarray], sheets: list[int], sheet: Sheet) -> None:
+    """Independent check (shapely): every outline inside its sheet's margin, no two on one
+    sheet closer than the spacing. Raises DgpcError naming the first violation."""
+    polys = [Polygon(o) for o in outlines]
+    m = sheet.margin - CHECK_TOL_MM
+    for poly, o in zip(polys, outlines, strict=True):
+        lo, hi = o.min(axis=0), o.max(axis=0)
+        if lo[0] < m or lo[1] < m or hi[0] > sheet.width - m or hi[1] > sheet.height - m:
+            raise DgpcError("internal: a part lies outside the sheet margin", source="nest")
+        if not poly.is_valid:
+            raise DgpcError("internal: a part outline is not a simple polygon", source="nest")
+    tree = shapely.STRtree(polys)
+    gap = max(sheet.spacing - CHECK_TOL_MM, 0.0)
+    pairs = tree.query(polys, predicate="dwithin", distance=gap) if gap > 0 else \
+        tree.query(polys, predicate="intersects")
+    sheet_of = np.asarray(sheets)
+    for i, j in pairs.T:
+        if i < j and sheet_of[i] == sheet_of[j]:
+            d = polys[i].distance(polys[j])
+            if gap > 0 or polys[i].intersection(polys[j]).area > CHECK_TOL_MM:
+                raise DgpcError(f"internal: two parts are {d:.6g} mm apart, spacing is "
+                                f"{sheet.spacing:g} mm", source="nest")
+
+
+def nest_parts(flat_parts: list[dict], sheet: Sheet, rotations: list[float], *,
+               units: str = "mm", scale: float = 1.0, engine: str = "fill",
+               time_limit: float = 10.0, seed: int = 0, progress=None) -> NestResult:
+    """Place every flat part (records of the flat artifact) on sheets; see the module."""
+    if sheet.width <= 0 or sheet.height <= 0:
+        raise DgpcError("sheet width and height must be > 0 mm", source="--sheet")
+    if sheet.spacing < 0:
+        raise DgpcError(f"{sheet.spacing:g}: must be >= 0 mm", source="--spacing")
+    if sheet.margin < 0:
+        raise DgpcError(f"{sheet.margin:g}: must be >= 0 mm", source="--margin")
+    if engine not in ENGINES:
+        raise DgpcError(f"{engine!r}: not one of {', '.join(ENGINES)}", source="--engine")
+    k = scale * UNIT_MM[units]
+    parts = prepare_parts(flat_parts, k)
+    check_fit(parts, sheet, rotations)
+    if engine == "fill":
+        placements, info = fill_sheets(parts, sheet, rotations, progress)
+    else:
+        placements = spyrrow_sheets(parts, sheet, rotations, time_limit, seed, progress)
+        info = {}
+    outlines = [transform(parts[p.index].outline, p.rotation, p.translation)
+                for p in placements]
+    check_layout(outlines, [p.sheet for p in placements], sheet)
+    if sorted(p.index for p in placements) != list(range(len(parts))):
+        raise DgpcError("internal: not every part placed exactly once", source="nest")
+    n = max(p.sheet for p in placements) + 1
+    area = np.zeros(n)
+    np.add.at(area, [p.sheet for p in placements], [parts[p.index].area for p in placements])
+    util = (area / (sheet.width * sheet.height)).tolist()
+    overall = float(area.sum() / (n * sheet.width * sheet.height))
+    log.info("%d parts on %d sheets, utilization %.1f %% overall", len(parts), n,
+             100 * overall)
+    return NestResult(parts, placements, sheet, list(rotations), util, overall, info)
+
+
+def sheet_drawings(result: NestResult) -> list[tuple[bytes, bytes, bytes]]:
+    """Per sheet ``(dxf, svg, png)`` bytes."""
+    out = []
+    for s in range(result.sheet_count):
+        placed = [placed_part(result.parts[p.index], p.rotation, p.translation)
+                  for p in result.placements if p.sheet == s]
+        dxf = sheet_dxf(result.sheet.width, result.sheet.height, placed)
+        out.append((dxf, *previews(dxf)))
+    return out
+
+
+def sheet_id(s: int) -> str:
+    return f"SH{s + 1:02d}"
+
+
+def parts_csv(result: NestResult) -> bytes:
+    """part id → 3-D strip (net columns v, v+1) → sheet → position (mm) and rotation."""
+    out = io.StringIO()
+    w = csv.writer(out, lineterminator="\n")
+    w.writerow(["part", "class", "strip", "net_columns", "sheet", "rotation_deg", "x_mm",
+                "y_mm", "label_x_mm", "label_y_mm"])
+    for p in sorted(result.placements, key=lambda q: result.parts[q.index].id):
+        part = result.parts[p.index]
+        lx, ly = transform(part.label, p.rotation, p.translation)
+        w.writerow([part.id, part.cls, part.strip, f"{part.strip}-{part.strip + 1}",
+                    sheet_id(p.sheet), repr(p.rotation), repr(p.translation[0]),
+                    repr(p.translation[1]), repr(float(lx)), repr(float(ly))])
+    return out.getvalue().encode("ascii")
+
+
+def sheets_obj(result: NestResult) -> bytes:
+    """OBJ: the sheets side by side, outlines as closed polylines, one object per sheet."""
+    from dgpc_cli import __version__
+    from dgpc_cli.io.sheets import OBJ_SHEET_GAP
+
+    W, H = result.sheet.width, result.sheet.height
+    lines = [f"# dgpc {__version__}",
+             f"# sheets ({result.sheet_count}), {W!r} x {H!r} mm, side by side along x"]
+    nv = 0
+
+    def ring(pts):
+        nonlocal nv
+        lines.extend(f"v {x!r} {y!r} 0.0" for x, y in pts.tolist())
+        idx = list(range(nv + 1, nv + len(pts) + 1))
+        nv += len(pts)
+        lines.append("l " + " ".join(map(str, idx + idx[:1])))
+
+    for s in range(result.sheet_count):
+        dx = np.array([s * (1.0 + OBJ_SHEET_GAP) * W, 0.0])
+        lines.append(f"o {sheet_id(s)}")
+        ring(np.array([[0.0, 0.0], [W, 0.0], [W, H], [0.0, H]]) + dx)
+        for p in result.placements:
+            if p.sheet == s:
+                lines.append(f"g {result.parts[p.index].id}")
+                ring(transform(result.parts[p.index].outline, p.rotation, p.translation) + dx)
+    return ("\n".join(lines) + "\n").encode("ascii")
+
+
+def mold_map(mold, k: float) -> bytes:
+    """The panel-to-mold map DXF of a mold artifact, model units scaled by ``k`` to mm."""
+    return mold_map_dxf(k * mold.r, k * mold.h, mold.data["sector"]["angle_deg"],
+                        mold.data["pieces"], mold.data["panels"])
+
+
+def sheets_data(result: NestResult, *, units: str, scale: float, engine: str,
+                time_limit: float, seed: int) -> dict:
+    """``data`` of the sheets artifact (without the file records)."""
+    per_sheet = []
+    for s in range(result.sheet_count):
+        on = [p for p in result.placements if p.sheet == s]
+        key = sheet_id(s).lower().replace("sh", "sheet")
+        per_sheet.append({
+            "id": sheet_id(s), "index": s,
+            "parts": sorted(result.parts[p.index].id for p in on),
+            "utilization": result.utilization[s],
+            "parts_area": float(sum(result.parts[p.index].area for p in on)),
+            "dxf": f"{key}_dxf", "svg": f"{key}_svg", "png": f"{key}_png"})
+    sh = result.sheet
+    return {
+        "sheet": {"width": sh.width, "height": sh.height, "margin": sh.margin,
+                  "spacing": sh.spacing, "units": units, "scale": scale,
+                  "mm_per_unit": scale * UNIT_MM[units]},
+        "rotations": result.rotations, "engine": engine, "engine_info": result.engine_info,
+        "seed": seed, "time_limit": time_limit, "sheet_count": result.sheet_count,
+        "sheets": per_sheet,
+        "placements": [{"part": result.parts[p.index].id, "class": result.parts[p.index].cls,
+                        "strip": result.parts[p.index].strip, "sheet": p.sheet,
+                        "rotation": p.rotation, "translation": list(p.translation)}
+                       for p in result.placements],
+        "utilization": {"overall": result.overall, "per_sheet": result.utilization},
+    }
+
+
+def sheets_metrics(data: dict) -> dict:
+    """The metrics of a sheets artifact (SPEC §7: sheet utilization)."""
+    return {"sheet_count": data["sheet_count"], "n_parts": len(data["placements"]),
+            "utilization": data["utilization"]["overall"],
+            "utilization_per_sheet": data["utilization"]["per_sheet"]}

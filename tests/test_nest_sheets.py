@@ -1,0 +1,233 @@
+"""Issue 6 done-means: `dgpc nest` cut sheets checked independently (ezdxf + shapely), the
+panel-to-mold map, determinism, bad input, utilization against spyrrow's single strip."""
+
+import csv
+import json
+
+import ezdxf
+import numpy as np
+import pytest
+from cli_helpers import dgpc, metrics
+from shapely.geometry import Point, Polygon, box
+
+from dgpc_cli.io.flat import read_flat
+from dgpc_cli.io.net import NetArtifact, read_net, write_net
+from dgpc_cli.io.sheets import read_sheets
+from dgpc_cli.nesting.geometry import CLEARANCE_MM, prepare_parts
+from dgpc_cli.nesting.strip import strip_density
+from dgpc_cli.surfaces.minding import minding_bend
+
+SCALE = 100.0          # 1 net unit = 100 mm
+SHEET = (700.0, 500.0)
+MARGIN, SPACING = 10.0, 3.0
+
+
+def _sample(folder, cols):
+    """Flat parts (and mold) of a full-ring catenoid net bent by Minding (λ = 0.7)."""
+    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 21, "--cols",
+         cols, "--span", 360, "-o", folder / "cat")
+    write_net(folder / "iso", NetArtifact(f=minding_bend(read_net(folder / "cat").f, 0.7)))
+    dgpc("planarize-strips", folder / "iso", "-o", folder / "s")
+    dgpc("unfold", folder / "s", "-o", folder / "flat")
+    return folder / "flat"
+
+
+@pytest.fixture(scope="module")
+def sample(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("nest")
+    flat = _sample(folder, 13)                                  # 12 congruent strips
+    dgpc("extract-mold", folder / "iso", "-o", folder / "mold")
+    args = ["--sheet", f"{SHEET[0]:g}x{SHEET[1]:g}", "--margin", MARGIN, "--spacing", SPACING,
+            "--scale", SCALE]
+    out = dgpc("nest", flat, "--mold", folder / "mold", *args, "-o", folder / "sh")
+    assert out.stdout.strip() == str(folder / "sh.json")
+    dgpc("nest", flat, "--mold", folder / "mold", *args, "-o", folder / "again")
+    return folder, flat, args
+
+
+def _read_sheet(path):
+    doc = ezdxf.readfile(path)
+    msp = doc.modelspace()
+    return doc, {
+        "sheet": [np.array(e.get_points("xy")) for e in msp.query("LWPOLYLINE[layer=='SHEET']")],
+        "cut": [(np.array(e.get_points("xy")), e.closed)
+                for e in msp.query("LWPOLYLINE[layer=='CUT']")],
+        "score": [(np.array(e.get_points("xy")), e.closed)
+                  for e in msp.query("LWPOLYLINE[layer=='SCORE']")],
+        "label": [(e.dxf.text, np.array(e.dxf.align_point)[:2])
+                  for e in msp.query("TEXT[layer=='LABEL']")]}
+
+
+def test_sheet_dxfs_pass_independent_checks(sample):
+    folder, flat_stem, _ = sample
+    art = read_sheets(folder / "sh")
+    flat = {p["id"]: p for p in read_flat(flat_stem).parts}
+    placements = {p["part"]: p for p in art.data["placements"]}
+    assert art.data["sheet_count"] >= 2                      # several sheets on this size
+    seen = []
+    for s, rec in enumerate(art.data["sheets"]):
+        doc, ents = _read_sheet(art.file(rec["dxf"]))
+        assert doc.dxfversion == "AC1024"                    # R2010
+        assert doc.header["$INSUNITS"] == 4                  # mm
+        auditor = doc.audit()
+        assert not auditor.has_errors, [str(e) for e in auditor.errors]
+        (sheet_pts,) = ents["sheet"]
+        lo, hi = sheet_pts.min(axis=0), sheet_pts.max(axis=0)
+        assert np.allclose(lo, 0) and np.allclose(hi, SHEET)
+        inner = box(MARGIN, MARGIN, SHEET[0] - MARGIN, SHEET[1] - MARGIN)
+        polys = []
+        for pts, closed in ents["cut"]:
+            assert closed
+            poly = Polygon(pts)
+            assert poly.is_valid and inner.covers(poly)      # inside the margin
+            polys.append(poly)
+        for i in range(len(polys)):                          # the kerf
+            for j in range(i + 1, len(polys)):
+                assert polys[i].distance(polys[j]) >= SPACING - 1e-9
+        assert all(not closed for _, closed in ents["score"])
+        for pid, at in ents["label"]:                        # label → its outline
+            (k,) = [k for k, poly in enumerate(polys) if poly.contains(Point(at))]
+            pts = ents["cut"][k][0]
+            pl = placements[pid]
+            assert pl["sheet"] == s
+            a = np.radians(pl["rotation"])
+            R = np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
+            want = SCALE * np.asarray(flat[pid]["outline"]) @ R.T + pl["translation"]
+            assert pts.shape == want.shape
+            assert np.abs(pts - want).max() <= 1e-6          # same outline, mm
+            seen.append(pid)
+        assert len(ents["label"]) == len(polys)
+        assert sum(len(flat[p]["score"]) for p, _ in ents["label"]) == len(ents["score"])
+        area = sum(p.area for p in polys)
+        assert abs(rec["utilization"] - area / (SHEET[0] * SHEET[1])) <= 1e-9
+    assert sorted(seen) == sorted(flat)                      # each part exactly once
+    m = metrics(folder / "sh")
+    assert m["sheet_count"] == art.data["sheet_count"] and m["n_parts"] == len(flat)
+
+
+def test_parts_csv_obj_and_previews(sample):
+    folder, flat_stem, _ = sample
+    art = read_sheets(folder / "sh")
+    rows = list(csv.DictReader(art.file("parts_csv").open()))
+    assert [r["part"] for r in rows] == sorted(p["id"] for p in read_flat(flat_stem).parts)
+    for r in rows:
+        assert r["net_columns"] == f"{r['strip']}-{int(r['strip']) + 1}"
+        assert r["sheet"].startswith("SH")
+    obj = (folder / "sh.obj").read_text().splitlines()
+    assert sum(line.startswith("o SH") for line in obj) == art.data["sheet_count"]
+    assert sum(line.startswith("l ") for line in obj) == art.data["sheet_count"] + len(rows)
+    for rec in art.data["sheets"]:
+        assert art.file(rec["png"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        assert b"<svg" in art.file(rec["svg"]).read_bytes()[:500]
+
+
+def test_mold_map(sample):
+    folder, _, _ = sample
+    art = read_sheets(folder / "sh")
+    mold = json.loads((folder / "mold.json").read_text())["data"]
+    doc = ezdxf.readfile(art.file("moldmap_dxf"))
+    assert doc.header["$INSUNITS"] == 4 and not doc.audit().has_errors
+    msp = doc.modelspace()
+    (profile,) = msp.query("LWPOLYLINE[layer=='PROFILE']")
+    r = np.array(profile.get_points("xy"))[:, 0]
+    assert np.allclose(r, SCALE * np.asarray(mold["profile"]["r"]), atol=1e-6)
+    assert len(msp.query("LWPOLYLINE[layer=='PIECES']")) == len(mold["pieces"])
+    table = " ".join(e.dxf.text for e in msp.query("TEXT[layer=='TABLE']"))
+    for piece in mold["pieces"]:
+        assert piece["id"] in table
+    assert all(p["id"] in table for p in mold["panels"])
+    assert "flat panels" in table
+
+
+def test_deterministic_bytes(sample):
+    folder, _, _ = sample
+    a, b = read_sheets(folder / "sh"), read_sheets(folder / "again")
+    for key in a.data["files"]:
+        assert a.file(key).read_bytes() == b.file(key).read_bytes(), key
+    assert (folder / "sh.obj").read_bytes() == (folder / "again.obj").read_bytes()
+    assert a.data["placements"] == b.data["placements"]
+
+
+@pytest.mark.parametrize("extra, code, names", [
+    (["--sheet", "0x500"], 2, "--sheet"),
+    (["--sheet", "300x500"], 1, "S-v00"),                     # parts are 527 mm long
+    (["--sheet", "700x500", "--spacing", "-1"], 2, "--spacing"),
+    (["--sheet", "700x500", "--rotations", "0,sideways"], 2, "--rotations"),
+    (["--sheet", "700x500", "--rotations", "0,360"], 2, "--rotations"),
+])
+def test_bad_input_writes_nothing(sample, tmp_path, extra, code, names):
+    _, flat, _ = sample
+    res = dgpc("nest", flat, "--scale", SCALE, *extra, "-o", tmp_path / "bad", expect=code)
+    err = [line for line in res.stderr.splitlines() if line.strip()]
+    assert names in res.stderr and err[-1].startswith("Error")
+    assert len([line for line in err if line.startswith("Error")]) == 1
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_schema_rejects_edits(sample, tmp_path):
+    folder, _, _ = sample
+    from dgpc_cli.errors import DgpcError
+
+    for name in ("sh.obj", "sh.parts.csv", "sh.moldmap.dxf"):
+        (tmp_path / name).write_bytes((folder / name).read_bytes())
+    for f in folder.glob("sh.sheet*"):
+        (tmp_path / f.name).write_bytes(f.read_bytes())
+    doc = json.loads((folder / "sh.json").read_text())
+    (tmp_path / "sh.json").write_text(json.dumps(doc))
+    assert read_sheets(tmp_path / "sh").data["sheet_count"] == doc["data"]["sheet_count"]
+    for edit, match in [
+        (lambda d: d["data"]["utilization"].__setitem__("overall", 1.5), "overall"),
+        (lambda d: d["data"].pop("placements"), "placements"),
+        (lambda d: d["data"]["placements"][0].__setitem__("sheet", 99), "sheet"),
+        (lambda d: d["data"].__setitem__("engine", "magic"), "engine"),
+    ]:
+        bad = json.loads(json.dumps(doc))
+        edit(bad)
+        (tmp_path / "sh.json").write_text(json.dumps(bad))
+        with pytest.raises(DgpcError, match=match):
+            read_sheets(tmp_path / "sh")
+    (tmp_path / "sh.json").write_text(json.dumps(doc))
+    (tmp_path / "sh.sheet01.dxf").write_text("0\nEOF\n")
+    with pytest.raises(DgpcError, match="sha256"):
+        read_sheets(tmp_path / "sh")
+
+
+def test_utilization_against_spyrrow_single_strip(tmp_path):
+    """The bench's sample (24 strips, 1650 × 800 mm): our overall utilization is at least 90 %
+    of spyrrow's own density on one strip of the sheet's inner height (same parts, run)."""
+    flat = _sample(tmp_path, 25)
+    dgpc("nest", flat, "--sheet", "1650x800", "--scale", SCALE, "-o", tmp_path / "sh")
+    ours = read_sheets(tmp_path / "sh").data["utilization"]["overall"]
+    parts = prepare_parts(read_flat(flat).parts, SCALE)
+    density, _ = strip_density(parts, 800 - 2 * (10 + CLEARANCE_MM), [0.0, 180.0], 3.0,
+                               time_limit=3, seed=0)
+    assert ours >= 0.9 * density, (ours, density)
+
+
+def test_spyrrow_engine_layout_is_checked(sample, tmp_path):
+    _, flat, _ = sample
+    dgpc("nest", flat, "--sheet", "1250x700", "--engine", "spyrrow",
+         "--time-limit", 1, "--scale", SCALE, "-o", tmp_path / "sp")
+    art = read_sheets(tmp_path / "sp")
+    assert art.data["engine"] == "spyrrow"
+    assert sorted(p["part"] for p in art.data["placements"]) == \
+        sorted(p["id"] for p in read_flat(flat).parts)
+
+
+def test_dxf_bytes_do_not_depend_on_the_process(sample, tmp_path):
+    """ezdxf orders CLASS records by a set of type names (string hashing differs per process):
+    the shared writer sorts them, so two processes with different hash seeds agree."""
+    import os
+    import subprocess
+    import sys
+
+    folder, flat, args = sample
+    outs = []
+    for seed in ("1", "2"):
+        env = {**os.environ, "PYTHONHASHSEED": seed}
+        subprocess.run([sys.executable, "-m", "dgpc_cli", "-q", "nest", str(flat), "--mold",
+                        str(folder / "mold"), *map(str, args), "-o", str(tmp_path / seed)],
+                       check=True, env=env, capture_output=True)
+        outs.append(read_sheets(tmp_path / seed))
+    for key in ("sheet01_dxf", "moldmap_dxf"):
+        assert outs[0].file(key).read_bytes() == outs[1].file(key).read_bytes(), key
