@@ -25,13 +25,14 @@ test: setup ## Run the test suite.
 lint: setup ## Run ruff.
 	$(BIN)/ruff check dgpc_cli tests benchmarks
 
-demo: setup ## Run the main job on the built-in sample; prints where the result is.
+demo: setup ## Run the main job on the built-in sample; prints where the cut sheets are.
 	@mkdir -p $(DEMO)
-	$(BIN)/dgpc init --surface revolution --profile bowling-pin --rows 41 --cols 21 \
-	    --twist 0.5 --reference-out $(DEMO)/pin-reference.obj -o $(DEMO)/pin-initial --force
-	$(BIN)/dgpc optimize $(DEMO)/pin-initial --mode fit --reference $(DEMO)/pin-reference.obj \
-	    -o $(DEMO)/pin --force
-	@echo "result: $(DEMO)/pin.json and $(DEMO)/pin.obj (metrics: $(BIN)/dgpc inspect $(DEMO)/pin)"
+	$(BIN)/dgpc -q init --surface revolution --profile catenoid --rows 21 --cols 13 \
+	    --span 120 -o $(DEMO)/wall --force
+	$(BIN)/dgpc -q planarize-strips $(DEMO)/wall -o $(DEMO)/strips --force
+	$(BIN)/dgpc -q unfold $(DEMO)/strips -o $(DEMO)/flat --force
+	$(BIN)/dgpc -q nest $(DEMO)/flat --sheet 2500x1250 --scale 100 -o $(DEMO)/sheets --force
+	@echo "cut sheets: $$(ls $(DEMO)/sheets.sheet*.dxf | tr '\n' ' ')(summary: $(DEMO)/sheets.json)"
 
 bench: setup ## Solver speed at the paper's sizes beside a plain spsolve reference.
 	$(BIN)/python benchmarks/solver_bench.py

@@ -26,11 +26,12 @@ import numpy as np
 from dgpc_cli.core.layout import NetLayout
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.core.solver.linear import available_backends
+from dgpc_cli.stages.init import REFERENCE_MARGIN
 from dgpc_cli.stages.modes import mode_weights
 from dgpc_cli.stages.optimize import optimize_net
 from dgpc_cli.surfaces.minding import minding_bend
 from dgpc_cli.surfaces.profiles import builtin_profile
-from dgpc_cli.surfaces.revolution import revolution_mesh, revolution_net
+from dgpc_cli.surfaces.revolution import extended, revolution_mesh, revolution_net
 
 REFERENCE_ITERATIONS = 3
 
@@ -47,7 +48,7 @@ def isometric_problem():
 def fit_problem():
     profile = builtin_profile("bowling-pin")
     f = revolution_net(profile, 123, 39, span_deg=180.0, twist=0.5)
-    vertices, faces = revolution_mesh(profile)
+    vertices, faces = revolution_mesh(extended(profile, REFERENCE_MARGIN))
     kwargs = dict(reference=ReferenceSurface(vertices, faces))
     return "123×39 fit (Fig. 11-2)", f, mode_weights("fit"), kwargs
 

@@ -2,8 +2,9 @@
 
 Every net here is an *exact* isometric deformation of a meridian net of a surface of revolution:
 Minding's bending (Prop. 4.3, :func:`dgpc_cli.surfaces.minding.minding_bend`, which keeps every
-edge and diagonal length) followed by a rigid motion. (``optimize --mode isometric`` does not
-reach R ≤ 1e-8 on these problems yet; see the closing note of issue 4.)
+edge and diagonal length) followed by a rigid motion, so that the tests know the exact answer.
+``test_mold_cli.test_truth_through_an_isometric_optimization`` makes the deformation with
+``optimize --mode isometric`` instead.
 """
 
 from __future__ import annotations

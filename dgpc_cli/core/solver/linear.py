@@ -20,8 +20,10 @@ import scipy.sparse.linalg as spla
 
 from dgpc_cli.core.solver.normal_matrix import NormalMatrix
 
-#: MKL's threading domain of PARDISO (mkl_service.h).
-MKL_DOMAIN_PARDISO = 4
+#: mkl_cbwr_set branch of conditional numerical reproducibility (mkl_service.h), and the
+#: number of threads PARDISO's factorization is reproducible with.
+MKL_CBWR_COMPATIBLE = 2
+CNR_THREADS = 2
 
 
 class PardisoSPD:
@@ -31,10 +33,15 @@ class PardisoSPD:
         from pypardiso.pardiso_wrapper import PyPardisoSolver
 
         self._solver = PyPardisoSolver(mtype=2)
-        # One thread: PARDISO's threaded factorization rounds differently from run to run, and
-        # the artifacts must be byte-deterministic (SPEC §3); near singular roots the solver
-        # amplifies such differences. Only the PARDISO domain is pinned (MKL_DOMAIN_PARDISO).
-        self._solver.libmkl.MKL_Domain_Set_Num_Threads(1, MKL_DOMAIN_PARDISO)
+        # Conditional numerical reproducibility: PARDISO's threaded factorization otherwise
+        # rounds differently from run to run, the artifacts must be byte-deterministic
+        # (SPEC §3), and near singular roots the solver amplifies such differences.
+        self._solver.libmkl.MKL_CBWR_Set(MKL_CBWR_COMPATIBLE)
+        iparm = self._solver.iparm
+        iparm[0] = 1                    # the values below, not PARDISO's defaults
+        iparm[1] = 0                    # minimum-degree ordering: less work than METIS here
+        iparm[9] = 8                    # pivot perturbation 1e-8 (the SPD default)
+        iparm[33] = CNR_THREADS         # reproducible results with this many threads
         self._A = pattern.upper(np.zeros(pattern.nnz))
         self._A.has_sorted_indices = True
         self._analysed = False
