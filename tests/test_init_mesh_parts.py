@@ -125,9 +125,6 @@ def test_bent_sheet_geodesic_init_is_nearly_developable(sheet):
     assert m["jacobi_residual_max"] <= 1e-5              # strips of constant width already
 
 
-@pytest.mark.xfail(strict=True, reason="issue 3 bound not met yet: developable mode keeps the "
-                   "net on the sheet (Hausdorff 1.4e-4 of the diagonal) but stagnates at "
-                   "R ~ 8e-5 with a relative Jacobi residual of 1.3e-6 (bound 1e-6)")
 def test_bent_sheet_developable(sheet):
     dgpc("optimize", sheet / "s0", "--mode", "developable", "--reference", sheet / "sheet.obj",
          "--max-iter", 30, "-o", sheet / "s1")

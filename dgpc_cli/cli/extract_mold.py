@@ -8,11 +8,12 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.cli.options import check_writable, force_opt, output_opt
+from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.mold import mold_files, mold_paths
 from dgpc_cli.io.net import read_net
+from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.mold.dxf import UNIT_MM
 from dgpc_cli.stages.extract_mold import (
     DEFAULT_FLAT_TOL,
@@ -45,8 +46,9 @@ log = logging.getLogger(__name__)
               help="Length unit of the nets (the profile DXF is written in mm).")
 @output_opt
 @force_opt
+@format_opt
 def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length, tol, unit,
-                     output, force):
+                     output, force, fmt):
     """Extract the surface of revolution that the nets NET… are isometric to (paper §4.2.2).
 
     Writes the mold artifact -o MOLD: MOLD.json, MOLD.obj (the surface of revolution and one
@@ -91,7 +93,7 @@ def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length,
         metrics=metrics,
         status={"state": "ok", "lambda_lowered": mer.lowered, "message": message},
     )
-    write_files(files, force=force)
+    write_files(with_3dm(files, output, fmt), force=force)
     click.echo(str(paths["json"]))
     log.info("%s: N = %.6g (λ = %.6g), %d mold pieces, %d curved and %d flat panels, isometry "
              "error ≤ %.3g", paths["json"], mer.segments, mer.lam, metrics["pieces"],

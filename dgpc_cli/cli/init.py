@@ -7,11 +7,12 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.cli.options import check_writable, force_opt, output_opt
+from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths, file_input, relative_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import net_files
+from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.stages.init import init_revolution
 from dgpc_cli.stages.inspect import summarize
 from dgpc_cli.surfaces.profiles import describe_builtins
@@ -87,8 +88,9 @@ def _mesh_net(reference, method, direction, rows, cols, spacing, largest_compone
                    "the reference for `optimize --mode fit`.")
 @output_opt
 @force_opt
+@format_opt
 def init(reference, surface, profile, method, direction, from_quads, largest_component, rows,
-         cols, spacing, span, twist, reference_out, output, force):
+         cols, spacing, span, twist, reference_out, output, force, fmt):
     """Make an initial m×n net (u-lines: the geodesics).
 
     \b
@@ -149,6 +151,6 @@ def init(reference, surface, profile, method, direction, from_quads, largest_com
     if mesh is not None:
         net.inputs["reference"] = net.data["reference"] = file_input(mesh.path, folder)
     net.metrics = summarize(net, mesh=mesh)
-    files.update(net_files(output, net))
+    files.update(with_3dm(net_files(output, net), output, fmt))
     write_files(files, force=force)
     click.echo(str(json_path))

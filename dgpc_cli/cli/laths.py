@@ -8,12 +8,13 @@ from pathlib import Path
 import click
 import numpy as np
 
-from dgpc_cli.cli.options import force_opt
+from dgpc_cli.cli.options import force_opt, format_opt
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.laths import laths_files
 from dgpc_cli.io.net import read_net
+from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.stages.laths import GAP, gridshell
 
 log = logging.getLogger(__name__)
@@ -30,7 +31,8 @@ log = logging.getLogger(__name__)
               help="Output stem: writes STEM.json, STEM.obj (laths as polylines) and STEM.csv "
                    "(cut list).")
 @force_opt
-def laths(net_a, net_b, gap, output, force):
+@format_opt
+def laths(net_a, net_b, gap, output, force, fmt):
     """Laths of a geodesic gridshell (paper §6.2.1, Fig. 14) from two transversal nets NET_A
     and NET_B on one reference (e.g. `init --method geodesic` with two --direction values, each
     optimized with `--mode fit`).
@@ -64,7 +66,7 @@ def laths(net_a, net_b, gap, output, force):
                "length_total": float(lengths.sum()), "length_max": float(lengths.max())}
     files = laths_files(output, all_laths, crossings, inputs=inputs,
                         parameters={"gap": gap}, metrics=metrics)
-    write_files(files, force=force)
+    write_files(with_3dm(files, output, fmt), force=force)
     log.info("%d laths, %d crossings, largest gap %.3g", len(all_laths), len(crossings.a),
              metrics["crossing_gap_max"])
     click.echo(str(json_path))

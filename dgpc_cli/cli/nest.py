@@ -7,11 +7,12 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.cli.options import check_writable, force_opt, output_opt, progressbar
+from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt, progressbar
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.dxf import UNIT_MM
 from dgpc_cli.io.flat import read_flat
+from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.sheets import extra_path, sheets_files
 from dgpc_cli.nesting.blf import Sheet
 from dgpc_cli.stages.nest import (
@@ -67,9 +68,10 @@ def _parsed(parser):
               help="Random seed (engine spyrrow).")
 @output_opt
 @force_opt
+@format_opt
 @click.pass_context
 def nest(ctx, stem, mold_stem, sheet_size, margin, spacing, rotations, units, scale, engine,
-         time_limit, seed, output, force):
+         time_limit, seed, output, force, fmt):
     """Place every part of the flat artifact STEM (each congruence class in its quantity) on
     as few sheets as it can, and write the sheets artifact -o SHEETS: SHEETS.json, .obj,
     .parts.csv and per sheet SHEETS.sheetNN.dxf/.svg/.png (with --mold, .moldmap.dxf).
@@ -113,5 +115,5 @@ def nest(ctx, stem, mold_stem, sheet_size, margin, spacing, rotations, units, sc
                          inputs=inputs, parameters=parameters, metrics=sheets_metrics(data),
                          status={"sheet_count": result.sheet_count,
                                  "deterministic": engine == "fill"})
-    write_files(files, force=force)
+    write_files(with_3dm(files, output, fmt, parts=flat.parts), force=force)
     click.echo(str(out_json))

@@ -7,14 +7,16 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.cli.options import check_writable, force_opt, output_opt, progressbar
+from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt, progressbar
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.core.solver.linear import BACKENDS
 from dgpc_cli.errors import DgpcError, NotConverged
 from dgpc_cli.io.artifact import artifact_paths, file_input, resolve_input
 from dgpc_cli.io.handles import read_handles
 from dgpc_cli.io.mesh import load_mesh
-from dgpc_cli.io.net import NetArtifact, read_net, write_net
+from dgpc_cli.io.atomic import write_files
+from dgpc_cli.io.net import NetArtifact, net_files, read_net
+from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.stages.inspect import summarize
 from dgpc_cli.stages.modes import MODES, SOFT, describe_weights, mode_weights
 from dgpc_cli.stages.optimize import optimize_net
@@ -61,9 +63,10 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
               show_default=True, help="Sparse linear solver of the normal equations.")
 @output_opt
 @force_opt
+@format_opt
 @click.pass_context
 def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol, backend,
-             output, force):
+             output, force, fmt):
     """Optimize the net STEM with guided projection (paper §5) and write it to -o STEM2.
 
     Exit code 3 if the last step does not reach --tol (the artifact is still written, with
@@ -113,7 +116,7 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
         inputs=inputs, data=data, status=outcome.record())
     result.metrics = summarize(result, mesh=mesh,
                                against=net if mode == "isometric" else None)
-    write_net(output, result, force=force)
+    write_files(with_3dm(net_files(output, result), output, fmt), force=force)
     click.echo(str(out_json))
     log.info("%s: %s, %d iterations, R = %.3g", out_json, outcome.status, outcome.iterations,
              result.metrics["R"])

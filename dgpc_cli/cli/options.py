@@ -14,6 +14,10 @@ output_opt = click.option(
     "-o", "--output", "output", required=True, type=click.Path(dir_okay=False, path_type=Path),
     help="Output artifact stem: writes STEM.json and STEM.obj.")
 force_opt = click.option("--force", is_flag=True, help="Overwrite existing output files.")
+format_opt = click.option(
+    "--format", "fmt", type=click.Choice(["obj", "3dm"]), default="obj", show_default=True,
+    help="Geometry format: with 3dm, also write STEM.3dm (Rhino, mm, named layers) beside the "
+         "OBJ and list it in the JSON (data.rhino_3dm).")
 
 
 def check_writable(stem: Path, force: bool, *extra: Path) -> None:

@@ -7,10 +7,11 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.cli.options import check_writable, force_opt, output_opt, progressbar
+from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt, progressbar
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import read_net
+from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.strips import StripsArtifact, strips_files
 from dgpc_cli.stages.planarize import (
     FLAT_ANGLE,
@@ -34,8 +35,9 @@ log = logging.getLogger(__name__)
                    "flat: their rulings are averaged from the nearest non-flat rows.")
 @output_opt
 @force_opt
+@format_opt
 @click.pass_context
-def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, output, force):
+def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, output, force, fmt):
     """Turn the geodesic strips of the net STEM into discrete developable strips (paper §6.2.4).
 
     Rulings follow the cross products N × N1 of neighbouring normals (averaged across flat
@@ -62,7 +64,7 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, output, force):
         inputs={"net": file_input(json_path, out_json.resolve().parent)},
         metrics=strips_metrics(strips),
         status={"polished": len(polished), "polish_not_converged": failed})
-    write_files(strips_files(output, art), force=force)
+    write_files(with_3dm(strips_files(output, art), output, fmt), force=force)
     click.echo(str(out_json))
     log.info("%s: %d strips, max planarity %.3g, max deviation %.3g of the width", out_json,
              len(strips), art.metrics["max_planarity"], art.metrics["max_deviation"])

@@ -1,4 +1,4 @@
-"""``dgpc report``: figures of an artifact (SPEC §2). So far: flat artifacts (paper Fig. 18)."""
+"""``dgpc report``: figures of any artifact and an ``index.html`` with its metrics (SPEC §2)."""
 
 from __future__ import annotations
 
@@ -7,44 +7,36 @@ from pathlib import Path
 import click
 
 from dgpc_cli.cli.inspect import artifact_kind
-from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths
 from dgpc_cli.io.atomic import write_files
-from dgpc_cli.io.flat import read_flat
-from dgpc_cli.stages.report import overlay_png, strips_png
+from dgpc_cli.stages.report import report_files
 
 
-def report_paths(prefix: Path) -> tuple[Path, Path]:
-    """``PREFIX-overlay.png`` and ``PREFIX-strips.png``."""
-    text = str(prefix)
-    if text.lower().endswith(".png"):
-        text = text[:-4]
-    return Path(text + "-overlay.png"), Path(text + "-strips.png")
-
-
-@click.command(short_help="Write figures of an artifact (PNG).")
+@click.command(short_help="Write figures of an artifact (PNG) and an index.html.")
 @click.argument("stem", type=click.Path(path_type=Path))
 @click.option("-o", "--output", "output", required=True,
               type=click.Path(dir_okay=False, path_type=Path),
-              help="Figure prefix: writes PREFIX-overlay.png and PREFIX-strips.png.")
+              help="Prefix: writes PREFIX-<figure>.png and PREFIX-index.html.")
 @click.option("--force", is_flag=True, help="Overwrite existing output files.")
 def report(stem, output, force):
-    """Figures of the artifact STEM. For a flat artifact: the developed strips aligned on their
-    class representatives (paper Fig. 18 bottom-right) and side by side (Fig. 18 bottom-left).
-    Prints the paths written."""
+    """Figures of the artifact STEM and PREFIX-index.html showing them with the artifact's
+    metrics as a table. Per kind:
+
+    \b
+    net     PREFIX-width.png (strip width), PREFIX-curvature.png (Gaussian curvature K, red
+            positive / blue negative / white 0, Fig. 17), PREFIX-strain.png (isometric
+            optimization with its input net at hand, Fig. 13), PREFIX-clairaut.png (net with
+            a recorded axis of revolution, Fig. 11); 3-D views from one fixed angle
+    strips  PREFIX-width.png (the planar-quad strips coloured by width)
+    flat    PREFIX-overlay.png, PREFIX-strips.png (developed strips, Fig. 18)
+    mold    PREFIX-profile.png (the meridian profile)
+    sheets  the index links the sheet previews written by dgpc nest
+
+    Prints the paths written, the index last.
+    """
     json_path, _ = artifact_paths(stem)
     kind = artifact_kind(json_path)
-    if kind != "flat":
-        raise DgpcError(f"reports of '{kind}' artifacts are not supported yet (only 'flat')",
-                        source=json_path)
-    paths = report_paths(output)
-    if not force:
-        for p in paths:
-            if p.exists():
-                raise DgpcError("already exists; use --force to overwrite", source=p)
-    flat = read_flat(json_path)
-    overlay, side = paths
-    write_files({overlay: overlay_png(flat.parts, flat.classes), side: strips_png(flat.parts)},
-                force=force)
-    for p in paths:
+    files = report_files(json_path, kind, output)
+    write_files(files, force=force)
+    for p in files:
         click.echo(str(p))

@@ -7,10 +7,11 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.cli.options import check_writable, force_opt, output_opt
+from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.flat import FlatArtifact, flat_files
+from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.strips import read_strips
 from dgpc_cli.stages.unfold import CONGRUENCE_TOL, unfold_strips
 
@@ -27,7 +28,8 @@ log = logging.getLogger(__name__)
                    "is farther apart than this fraction of the strip length.")
 @output_opt
 @force_opt
-def unfold(stem, mirror_ok, congruence_tol, output, force):
+@format_opt
+def unfold(stem, mirror_ok, congruence_tol, output, force, fmt):
     """Develop the planar-quad strips of the strips artifact STEM into the plane (paper §6.2.4).
 
     Records per part the closed outline, the rulings (score lines), a label point, the edge
@@ -47,5 +49,5 @@ def unfold(stem, mirror_ok, congruence_tol, output, force):
         parameters={"mirror_ok": mirror_ok, "congruence_tol": congruence_tol},
         inputs={"strips": file_input(json_path, out_json.resolve().parent)},
         metrics=metrics, status={"n_classes": len(classes)})
-    write_files(flat_files(output, art), force=force)
+    write_files(with_3dm(flat_files(output, art), output, fmt), force=force)
     click.echo(str(out_json))

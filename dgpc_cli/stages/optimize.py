@@ -106,6 +106,23 @@ def optimize_net(
         workspace, x = result.workspace, result.x
         total += result.iterations
         results.append(result)
+    last = results[-1]
+    pulling = [name for name in problem.active()
+               if name in problem.soft and weights[name].end > 0]
+    if not last.success and pulling:
+        # The soft terms hold the hard ones off their tolerance (a reference that is not
+        # exactly developable, say): project onto the hard constraints from here, soft terms
+        # off, so that the result is the nearby net that meets them (guided projection's
+        # damping keeps it close).
+        hard_only = Problem(layout, problem.scale, {**weights, **{name: Schedule.constant(0.0)
+                                                                 for name in pulling}},
+                            problem.f0, handle_ids, handle_targets, reference, problem.soft)
+        log.info("projecting onto the hard constraints without %s", ", ".join(pulling))
+        result = guided_projection(x, hard_only.terms(), max_iter=max_iter, tol=tol,
+                                   backend=backend, retract=layout.orient_edges,
+                                   callback=lambda k, r: progress and progress(total + k, r))
+        x = result.x
+        results.append(result)
     f_out = problem.vertices(x)
     norms = problem.residual_norms(f_out)
     last = results[-1]

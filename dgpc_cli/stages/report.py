@@ -1,37 +1,41 @@
-"""``dgpc report`` for a flat artifact: figures of the developed strips (paper Fig. 18 bottom).
+"""``dgpc report``: figures of an artifact and an ``index.html`` with its metrics (SPEC §2).
 
-* overlay: every part aligned on its class representative (Fig. 18 bottom-right: "Overlay of all
-  strips ... implying congruent strips"), one panel per class;
-* strips: the parts side by side, each with its rulings (score lines) and id (Fig. 18
-  bottom-left).
+Files written for ``-o PREFIX`` (each kind also gets ``PREFIX-index.html``):
+
+* net: ``PREFIX-width.png`` (strip width), ``PREFIX-curvature.png`` (discrete Gaussian
+  curvature, red/blue/white as Fig. 17), ``PREFIX-strain.png`` when the net comes from
+  ``optimize --mode isometric`` and its input net (``inputs.net``) is still there unchanged
+  (Fig. 13), ``PREFIX-clairaut.png`` when the net records an axis in ``data.surface.axis``
+  (Fig. 11) — see :mod:`dgpc_cli.report.net`;
+* strips: ``PREFIX-width.png``, the planar-quad strips coloured by their width;
+* flat: ``PREFIX-overlay.png`` and ``PREFIX-strips.png``:
+
+  - overlay: every part aligned on its class representative (Fig. 18 bottom-right: "Overlay of
+    all strips ... implying congruent strips"), one panel per class;
+  - strips: the parts side by side, each with its rulings (score lines) and id (Fig. 18
+    bottom-left);
+
+* mold: ``PREFIX-profile.png``, the meridian profile;
+* sheets: no new figure; the index links the sheet previews that ``nest`` wrote.
 
 Rendered with matplotlib's Agg backend, without metadata that would change between runs.
 """
 
 from __future__ import annotations
 
-import io
+import logging
+import os
+from pathlib import Path
 
 import numpy as np
 
-#: PNG resolution.
-DPI = 120
+from dgpc_cli.io.artifact import resolve_input, sha256_file
+from dgpc_cli.report.html import index_html
+from dgpc_cli.report.render import DPI, figure, png_bytes
 
+__all__ = ["DPI", "overlay_png", "report_files", "strips_png"]
 
-def _figure(width, height):
-    from matplotlib.figure import Figure
-
-    return Figure(figsize=(width, height), dpi=DPI)
-
-
-def _png(fig) -> bytes:
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-
-    FigureCanvasAgg(fig)
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", metadata={"Software": None})
-    return buf.getvalue()
-
+log = logging.getLogger(__name__)
 
 def _closed(ring):
     ring = np.asarray(ring, float)
@@ -48,7 +52,7 @@ def overlay_png(parts: list[dict], classes: list[dict]) -> bytes:
     """PNG of all parts aligned on their class representatives, one panel per class."""
     by_id = {p["id"]: p for p in parts}
     k = len(classes)
-    fig = _figure(8.0, 2.2 * k + 0.6)
+    fig = figure(8.0, 2.2 * k + 0.6)
     for row, cls in enumerate(classes):
         ax = fig.add_subplot(k, 1, row + 1)
         for pid in cls["members"]:
@@ -61,12 +65,12 @@ def overlay_png(parts: list[dict], classes: list[dict]) -> bytes:
                      f"{cls['max_relative_error']:.2e} of the length", fontsize=8)
         ax.tick_params(labelsize=6)
     fig.tight_layout()
-    return _png(fig)
+    return png_bytes(fig)
 
 
 def strips_png(parts: list[dict]) -> bytes:
     """PNG of the parts side by side (stacked across their length), with rulings and ids."""
-    fig = _figure(8.0, min(2.0 + 0.35 * len(parts), 40.0))
+    fig = figure(8.0, min(2.0 + 0.35 * len(parts), 40.0))
     ax = fig.add_subplot(1, 1, 1)
     offset = 0.0
     for part in parts:
@@ -83,4 +87,154 @@ def strips_png(parts: list[dict]) -> bytes:
     ax.set_aspect("equal")
     ax.tick_params(labelsize=6)
     fig.tight_layout()
-    return _png(fig)
+    return png_bytes(fig)
+
+
+# --------------------------------------------------------------------------------------------
+# every kind: (name, caption, PNG bytes) figures, then the index
+
+
+def _net_figures(json_path: Path) -> tuple[list, dict, dict]:
+    from dgpc_cli.io.net import read_net
+    from dgpc_cli.metrics.clairaut import clairaut_values
+    from dgpc_cli.metrics.strain import strain
+    from dgpc_cli.report.net import (
+        clairaut_png,
+        curvature_per_quad,
+        grids_png,
+        vertex_to_quad,
+        width_per_quad,
+    )
+    from dgpc_cli.stages.inspect import recorded_axis
+
+    net = read_net(json_path)
+    f = net.f
+    m, n = net.shape
+    figs = [
+        ("width", "Strip width per quad (mean of its two v-edges), paper §3.1.",
+         grids_png([f], [width_per_quad(f)], title=f"strip width, {m}×{n} net",
+                   label="strip width")),
+        ("curvature", "Discrete Gaussian curvature K = −∂uu w / w (Jacobi equation (1)): red "
+                      "positive, blue negative, white ≈ 0 (paper Fig. 17); grey: undefined.",
+         grids_png([f], [curvature_per_quad(f)], title="discrete Gaussian curvature K",
+                   label="K [1/length²]", diverging=True)),
+    ]
+    against = _isometry_input(net, json_path)
+    if against is not None:
+        amount, summary = strain(f, against.f)
+        figs.append(("strain", "Strain |λ1| + |λ2| against the input net of the isometric "
+                               f"optimization (paper Fig. 13), max {summary['max']:.3g}.",
+                     grids_png([f], [vertex_to_quad(amount)],
+                               title="strain against the input net", label="|λ1| + |λ2|")))
+    axis = recorded_axis(net)
+    if axis is not None:
+        values = clairaut_values(f, axis)
+        figs.append(("clairaut", "Clairaut's relation (9): r cos α along each geodesic, "
+                                 "constant on a surface of revolution (paper Fig. 11).",
+                     clairaut_png(values, f, title="r cos α along the geodesics")))
+    return figs, net.metrics, net.status
+
+
+def _isometry_input(net, json_path: Path):
+    """The input net of an isometric optimization, if recorded and present unchanged."""
+    from dgpc_cli.io.net import read_net
+
+    record = net.inputs.get("net")
+    if net.parameters.get("mode") != "isometric" or not record:
+        return None
+    path = resolve_input(record, json_path)
+    if not path.is_file():
+        log.warning("%s: input net %s is missing; no strain figure", json_path, record["path"])
+        return None
+    if record.get("sha256") and sha256_file(path) != record["sha256"]:
+        log.warning("%s: input net %s changed since; no strain figure", json_path,
+                    record["path"])
+        return None
+    other = read_net(path)
+    if other.shape != net.shape:
+        log.warning("%s: input net %s has another shape; no strain figure", json_path,
+                    record["path"])
+        return None
+    return other
+
+
+def _strips_figures(json_path: Path) -> tuple[list, dict, dict]:
+    from dgpc_cli.io.strips import read_strips
+    from dgpc_cli.report.net import grids_png, width_per_quad
+
+    art = read_strips(json_path)
+    grids = [np.stack([np.asarray(A, float), np.asarray(B, float)], axis=1)
+             for A, B in art.geometry]
+    figs = [("width", "The planar-quad strips, each quad coloured by the strip width.",
+             grids_png(grids, [width_per_quad(g) for g in grids],
+                       title=f"{len(grids)} planar-quad strips", label="strip width"))]
+    return figs, art.metrics, art.status
+
+
+def _flat_figures(json_path: Path) -> tuple[list, dict, dict]:
+    from dgpc_cli.io.flat import read_flat
+
+    flat = read_flat(json_path)
+    figs = [("overlay", "Every part aligned on its class representative (paper Fig. 18 "
+                        "bottom-right).", overlay_png(flat.parts, flat.classes)),
+            ("strips", "The developed parts side by side with their rulings (paper Fig. 18 "
+                       "bottom-left).", strips_png(flat.parts))]
+    return figs, flat.metrics, flat.status
+
+
+def _mold_figures(json_path: Path) -> tuple[list, dict, dict]:
+    from dgpc_cli.io.mold import read_mold
+    from dgpc_cli.report.net import profile_png
+
+    mold = read_mold(json_path)
+    unit = str(mold.data.get("unit", ""))
+    figs = [("profile", "The mold's meridian profile (r, h) with the axis of revolution.",
+             profile_png(mold.r, mold.h, unit=unit, title="mold meridian profile"))]
+    return figs, mold.metrics, mold.status
+
+
+def _sheets_links(json_path: Path, html_path: Path) -> tuple[list, dict, dict]:
+    from dgpc_cli.io.sheets import read_sheets
+
+    art = read_sheets(json_path)
+    links = []
+    folder = html_path.resolve().parent
+    for i, sheet in enumerate(art.data["sheets"]):
+        target = art.file(sheet["png"])
+        href = Path(os.path.relpath(target.resolve(), folder)).as_posix()
+        links.append((href, f"Sheet {i + 1} of {len(art.data['sheets'])} (preview written by "
+                            "dgpc nest)."))
+    return links, art.metrics, art.status
+
+
+FIGURES = {"net": _net_figures, "strips": _strips_figures, "flat": _flat_figures,
+           "mold": _mold_figures}
+
+
+def _prefix_text(prefix: Path) -> str:
+    text = str(prefix)
+    for suffix in (".png", ".html"):
+        if text.lower().endswith(suffix):
+            return text[: -len(suffix)]
+    return text
+
+
+def report_files(json_path: Path, kind: str, prefix: Path) -> dict[Path, bytes]:
+    """Every file of the report of the ``kind`` artifact ``json_path`` for ``-o PREFIX``:
+    ``PREFIX-<figure>.png`` and last ``PREFIX-index.html`` (nothing written)."""
+    text = _prefix_text(prefix)
+    html_path = Path(text + "-index.html")
+    files: dict[Path, bytes] = {}
+    if kind == "sheets":
+        links, metrics, status = _sheets_links(json_path, html_path)
+    else:
+        figs, metrics, status = FIGURES[kind](json_path)
+        links = []
+        for name, caption, data in figs:
+            path = Path(f"{text}-{name}.png")
+            files[path] = data
+            links.append((path.name, caption))
+    files[html_path] = index_html(title=f"dgpc report: {json_path.name}", kind=kind,
+                                  source=json_path.name, figures=links, metrics=metrics,
+                                  status=status)
+    return files
