@@ -12,9 +12,9 @@ from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.core.solver.linear import BACKENDS
 from dgpc_cli.errors import DgpcError, NotConverged
 from dgpc_cli.io.artifact import artifact_paths, file_input, resolve_input
+from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.handles import read_handles
 from dgpc_cli.io.mesh import load_mesh
-from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import NetArtifact, net_files, read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.stages.inspect import summarize

@@ -88,8 +88,13 @@ class Model:
 
     def mesh(self, layer: str, name: str, vertices, quads) -> None:
         mesh = rhino3dm.Mesh()
-        for x, y, z in np.asarray(vertices, float).reshape(-1, 3).tolist():
+        points = np.asarray(vertices, float).reshape(-1, 3).tolist()
+        for x, y, z in points:
             mesh.Vertices.Add(x, y, z)
+        # Add stores floats; switch to double precision, then set each vertex exactly.
+        mesh.Vertices.UseDoublePrecisionVertices = True
+        for i, (x, y, z) in enumerate(points):
+            mesh.Vertices.SetPoint3dAt(i, rhino3dm.Point3d(x, y, z))
         for a, b, c, d in np.asarray(quads, int).reshape(-1, 4).tolist():
             mesh.Faces.AddFace(a, b, c, d)
         self.file.Objects.AddMesh(mesh, self._attributes(layer, name))

@@ -28,7 +28,8 @@ def format_value(value) -> str:
 
 def flatten(obj, prefix: str = "") -> list[tuple[str, str]]:
     """``(dotted key, formatted value)`` rows of a JSON value, keys sorted; list items as
-    ``key[i]``, long lists of numbers as one summary row."""
+    ``key[i]``; lists longer than :data:`LIST_MAX` summarised (numbers: count, min, max;
+    records: count and the last one)."""
     if isinstance(obj, dict):
         rows: list[tuple[str, str]] = []
         for key in sorted(obj):
@@ -44,6 +45,9 @@ def flatten(obj, prefix: str = "") -> list[tuple[str, str]]:
                 return [(prefix, f"{len(obj)} values, min {format_value(float(min(numbers)))}, "
                                  f"max {format_value(float(max(numbers)))}")]
             return [(prefix, "[" + ", ".join(format_value(x) for x in obj) + "]")]
+        if len(obj) > LIST_MAX:                 # e.g. an iteration history: its last entry
+            return [(prefix, f"{len(obj)} entries, the last one below")] + \
+                flatten(obj[-1], f"{prefix}[{len(obj) - 1}]")
         rows = []
         for i, item in enumerate(obj):
             rows += flatten(item, f"{prefix}[{i}]")

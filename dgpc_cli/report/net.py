@@ -58,12 +58,17 @@ def _quads(f: np.ndarray) -> np.ndarray:
 
 
 def _equal_limits(ax, points: np.ndarray) -> None:
+    """Axis limits on the bounding box with one scale on all three axes (box aspect = the
+    box's extents, each at least 5 % of the largest, so flat nets stay visible)."""
     lo, hi = points.min(axis=0), points.max(axis=0)
-    mid, half = 0.5 * (lo + hi), 0.5 * float((hi - lo).max() or 1.0)
-    ax.set_xlim(mid[0] - half, mid[0] + half)
-    ax.set_ylim(mid[1] - half, mid[1] + half)
-    ax.set_zlim(mid[2] - half, mid[2] + half)
-    ax.set_box_aspect((1.0, 1.0, 1.0))
+    extent = hi - lo
+    big = float(extent.max()) or 1.0
+    extent = np.maximum(extent, 0.05 * big)
+    mid = 0.5 * (lo + hi)
+    ax.set_xlim(mid[0] - extent[0] / 2, mid[0] + extent[0] / 2)
+    ax.set_ylim(mid[1] - extent[1] / 2, mid[1] + extent[1] / 2)
+    ax.set_zlim(mid[2] - extent[2] / 2, mid[2] + extent[2] / 2)
+    ax.set_box_aspect(tuple(float(e) for e in extent))
 
 
 def grids_png(grids: list[np.ndarray], values: list[np.ndarray], *, title: str, label: str,

@@ -1,0 +1,147 @@
+"""``dgpc report`` on every artifact kind: PNG figures that decode, are not blank, are
+byte-deterministic, and an index.html that shows them with the metric names (issue 7 item 4)."""
+
+import json
+import re
+
+import numpy as np
+import pytest
+from cli_helpers import dgpc
+from PIL import Image
+
+from dgpc_cli.io.net import NetArtifact, read_net, write_net
+from dgpc_cli.report.render import DPI
+from dgpc_cli.surfaces.minding import minding_bend
+
+#: Figure sizes in inches, as rendered (see dgpc_cli.report.net).
+NET_SIZE, CLAIRAUT_SIZE, PROFILE_SIZE = (6.4, 5.2), (6.4, 4.0), (5.0, 6.0)
+
+
+@pytest.fixture(scope="module")
+def sample(tmp_path_factory):
+    """One artifact of each kind, small: a twisted catenoid net (with an axis), an isometric
+    optimization of a half sphere, strips, flat parts, a mold and sheets."""
+    d = tmp_path_factory.mktemp("report")
+    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 9, "--cols", 7,
+         "--span", 120, "--twist", 0.3, "-o", d / "net")
+    dgpc("init", "--surface", "revolution", "--profile", "sphere", "--rows", 9, "--cols", 9,
+         "--span", 90, "-o", d / "hs0")
+    f = read_net(d / "hs0").f
+    g = minding_bend(f, 0.9)
+    idx = [(0, 0), (0, 8), (8, 4)]
+    (d / "handles.json").write_text(json.dumps(
+        {"handles": [{"index": list(i), "target": g[i].tolist()} for i in idx]}))
+    dgpc("optimize", d / "hs0", "--mode", "isometric", "--handles", d / "handles.json",
+         "--steps", 2, "-o", d / "iso")
+    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 9, "--cols", 7,
+         "--span", 360, "-o", d / "cat")
+    write_net(d / "bent", NetArtifact(f=minding_bend(read_net(d / "cat").f, 0.7)))
+    dgpc("planarize-strips", d / "bent", "-o", d / "strips")
+    dgpc("unfold", d / "strips", "-o", d / "flat")
+    dgpc("extract-mold", d / "bent", "-o", d / "mold")
+    dgpc("nest", d / "flat", "--sheet", "700x500", "--scale", 100, "-o", d / "sheets")
+    return d
+
+
+def _check_png(path, size):
+    img = Image.open(path)
+    assert img.size == (round(size[0] * DPI), round(size[1] * DPI))
+    grey = np.asarray(img.convert("L"), float)
+    assert grey.std() > 5.0                                   # not blank
+    return np.asarray(img.convert("RGB"), int)
+
+
+def _check_index(path, pngs, metrics):
+    text = path.read_text(encoding="utf-8")
+    assert text.startswith("<!DOCTYPE html>") and "<script" not in text
+    for png in pngs:
+        assert f'src="{png}"' in text
+    for name in metrics:
+        assert f"<td>{name}" in text, name
+    return text
+
+
+def _report(sample, stem, prefix):
+    return [p for p in dgpc("report", sample / stem, "-o", sample / prefix).stdout.split()]
+
+
+@pytest.mark.parametrize("stem, names", [
+    ("net", ["width", "curvature", "clairaut"]),
+    ("iso", ["width", "curvature", "strain", "clairaut"]),
+    ("strips", ["width"]),
+    ("flat", ["overlay", "strips"]),
+    ("mold", ["profile"]),
+])
+def test_report_figures_and_index(sample, stem, names):
+    out = _report(sample, stem, f"{stem}-a")
+    pngs = [f"{stem}-a-{n}.png" for n in names]
+    assert out == [str(sample / p) for p in pngs] + [str(sample / f"{stem}-a-index.html")]
+    for n in names:
+        size = {"clairaut": CLAIRAUT_SIZE, "profile": PROFILE_SIZE}.get(n, NET_SIZE)
+        if stem != "flat":
+            _check_png(sample / f"{stem}-a-{n}.png", size)
+    doc = json.loads((sample / f"{stem}.json").read_text())
+    assert doc["metrics"]
+    _check_index(sample / f"{stem}-a-index.html", pngs, doc["metrics"])
+    # byte-deterministic
+    _report(sample, stem, f"{stem}-b")
+    for n in names:
+        assert (sample / f"{stem}-a-{n}.png").read_bytes() == \
+               (sample / f"{stem}-b-{n}.png").read_bytes()
+    a = (sample / f"{stem}-a-index.html").read_text().replace(f"{stem}-a-", "")
+    assert a == (sample / f"{stem}-b-index.html").read_text().replace(f"{stem}-b-", "")
+
+
+def test_curvature_is_red_blue_white(sample):
+    """A catenoid has K < 0 everywhere: its quads are blue, none red (Fig. 17 colours)."""
+    _report(sample, "net", "colours")
+    rgb = _check_png(sample / "colours-curvature.png", NET_SIZE)
+    plot = rgb[:, : int(0.75 * rgb.shape[1])]                 # left of the colour bar
+    r, g, b = plot[..., 0], plot[..., 1], plot[..., 2]
+    blue = (b > 150) & (r < 120) & (g < 120)
+    red = (r > 150) & (b < 120) & (g < 120)
+    assert blue.sum() > 200 and red.sum() == 0
+
+
+def test_sheets_index_links_the_nest_previews(sample):
+    out = _report(sample, "sheets", "sh")
+    assert out == [str(sample / "sh-index.html")]
+    doc = json.loads((sample / "sheets.json").read_text())
+    text = (sample / "sh-index.html").read_text()
+    hrefs = re.findall(r'<img src="([^"]+)"', text)
+    assert len(hrefs) == doc["data"]["sheet_count"] >= 1
+    for href in hrefs:
+        assert not href.startswith("/")                       # relative to the page
+        assert (sample / href).is_file()
+        Image.open(sample / href).verify()
+    for name in doc["metrics"]:
+        assert f"<td>{name}" in text
+
+
+def test_strain_figure_needs_the_input_net(sample, tmp_path):
+    """Without its recorded input net an isometric net still reports, without strain."""
+    for ext in (".json", ".obj"):
+        (tmp_path / f"iso{ext}").write_bytes((sample / f"iso{ext}").read_bytes())
+    out = dgpc("report", tmp_path / "iso", "-o", tmp_path / "r").stdout.split()
+    assert [p.rsplit("-", 1)[1] for p in out] == ["width.png", "curvature.png", "clairaut.png",
+                                                  "index.html"]
+
+
+def test_existing_files_need_force(sample):
+    _report(sample, "mold", "again")
+    result = dgpc("report", sample / "mold", "-o", sample / "again", expect=1)
+    assert "already exists" in result.stderr
+    dgpc("report", sample / "mold", "-o", sample / "again", "--force")
+
+
+def test_metrics_table_flattens_and_summarises():
+    from dgpc_cli.report.html import LIST_MAX, flatten
+
+    rows = dict(flatten({"b": {"x": 1.0, "y": None}, "a": [1, 2],
+                         "long": list(range(LIST_MAX + 1)),
+                         "hist": [{"R": float(i)} for i in range(LIST_MAX + 1)],
+                         "flag": True}))
+    assert list(rows) == ["a", "b.x", "b.y", "flag", "hist", f"hist[{LIST_MAX}].R", "long"]
+    assert rows["a"] == "[1, 2]" and rows["b.y"] == "null" and rows["flag"] == "true"
+    assert rows["long"] == f"{LIST_MAX + 1} values, min 0, max {LIST_MAX}"
+    assert rows[f"hist[{LIST_MAX}].R"] == str(LIST_MAX)
