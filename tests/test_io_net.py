@@ -129,7 +129,7 @@ def test_write_rejects_bad_inputs_field(tmp_path):
 def test_read_detects_edited_obj(tmp_path):
     _, obj_path = write_net(tmp_path / "a", net())
     obj_path.write_bytes(obj_path.read_bytes().replace(b"o net", b"o edited"))
-    with pytest.raises(DgpcError, match=r"a\.obj does not match a\.json \(edited separately\?\)"):
+    with pytest.raises(DgpcError, match=r"a\.obj: does not match a\.json \(edited separately\?\)"):
         read_net(tmp_path / "a")
 
 

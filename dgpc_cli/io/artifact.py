@@ -79,6 +79,23 @@ def resolve_input(record: dict, artifact_json: str | Path) -> Path:
     return Path(artifact_json).resolve().parent / record["path"]
 
 
+def read_listed(path: Path, sha256: str, json_path: Path, field: str) -> bytes:
+    """The bytes of a file an artifact lists (its OBJ, DXF, CSV ...), checked against the sha256
+    the JSON records under ``field``; DgpcError naming the file when missing or edited."""
+    path = Path(path)
+    try:
+        data = path.read_bytes()
+    except FileNotFoundError:
+        raise DgpcError(f"missing; {Path(json_path).name} needs it beside it ({field})",
+                        source=path) from None
+    except OSError as e:
+        raise DgpcError(f"cannot read: {e.strerror or e}", source=path) from None
+    if sha256_bytes(data) != sha256:
+        raise DgpcError(f"does not match {Path(json_path).name} (edited separately?): its "
+                        f"sha256 differs from {field}", source=path)
+    return data
+
+
 def artifact_paths(stem: str | Path) -> tuple[Path, Path]:
     """``(STEM.json, STEM.obj)`` for a stem given as ``STEM``, ``STEM.json`` or ``STEM.obj``."""
     text = os.fspath(stem)

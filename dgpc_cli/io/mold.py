@@ -33,6 +33,7 @@ from .artifact import (
     dumps_json,
     load_envelope,
     make_envelope,
+    read_listed,
     relative_input,
     resolve_input,
     sha256_bytes,
@@ -193,17 +194,7 @@ def mold_files(stem: str | Path, *, profile: dict, unit: str, segments: dict, se
 
 
 def _check_file(record: dict, json_path: Path, field: str) -> None:
-    path = resolve_input(record, json_path)
-    try:
-        data = path.read_bytes()
-    except FileNotFoundError:
-        raise DgpcError(f"missing; {json_path.name} needs it beside it ({field})",
-                        source=path) from None
-    except OSError as e:
-        raise DgpcError(f"cannot read: {e.strerror or e}", source=path) from None
-    if sha256_bytes(data) != record["sha256"]:
-        raise DgpcError(f"does not match {json_path.name} (edited separately?): its sha256 "
-                        f"differs from {field}", source=path)
+    read_listed(resolve_input(record, json_path), record["sha256"], json_path, field)
 
 
 def check_mold_data(data: dict, source: Path) -> None:

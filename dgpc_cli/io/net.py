@@ -9,7 +9,14 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import DgpcError
-from .artifact import artifact_paths, dumps_json, load_envelope, make_envelope, sha256_bytes
+from .artifact import (
+    artifact_paths,
+    dumps_json,
+    load_envelope,
+    make_envelope,
+    read_listed,
+    sha256_bytes,
+)
 from .atomic import write_files
 from .jsonable import load_schema, validate
 from .obj import format_net_obj, parse_net_obj
@@ -85,16 +92,7 @@ def read_net(stem: str | Path) -> NetArtifact:
     doc = load_envelope(json_path, KIND)
     data = doc["data"]
     m, n = data["shape"]
-    try:
-        obj_bytes = obj_path.read_bytes()
-    except FileNotFoundError:
-        raise DgpcError(f"missing; {json_path.name} needs it beside it (data.obj)",
-                        source=obj_path) from None
-    except OSError as e:
-        raise DgpcError(f"cannot read: {e.strerror or e}", source=obj_path) from None
-    if sha256_bytes(obj_bytes) != data["obj_sha256"]:
-        raise DgpcError(f"{obj_path.name} does not match {json_path.name} (edited separately?): "
-                        f"its sha256 differs from data.obj_sha256", source=obj_path)
+    obj_bytes = read_listed(obj_path, data["obj_sha256"], json_path, "data.obj_sha256")
     f = parse_net_obj(obj_bytes, m, n, obj_path)
     return NetArtifact(f=f, parameters=doc["parameters"], inputs=doc["inputs"], data=data,
                        metrics=doc["metrics"], status=doc["status"])

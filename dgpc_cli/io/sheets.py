@@ -29,6 +29,7 @@ from .artifact import (
     dumps_json,
     load_envelope,
     make_envelope,
+    read_listed,
     relative_input,
     resolve_input,
     sha256_bytes,
@@ -79,14 +80,7 @@ class SheetsArtifact:
 
 
 def _check_file(record: dict, json_path: Path, field: str) -> None:
-    path = resolve_input(record, json_path)
-    try:
-        data = path.read_bytes()
-    except OSError as e:
-        raise DgpcError(f"cannot read ({field}): {e.strerror or e}", source=path) from None
-    if sha256_bytes(data) != record["sha256"]:
-        raise DgpcError(f"does not match {json_path.name}: its sha256 differs from {field}",
-                        source=path)
+    read_listed(resolve_input(record, json_path), record["sha256"], json_path, field)
 
 
 def read_sheets(stem: str | Path) -> SheetsArtifact:

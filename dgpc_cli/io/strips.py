@@ -16,7 +16,14 @@ import numpy as np
 
 from .. import __version__
 from ..errors import DgpcError
-from .artifact import artifact_paths, dumps_json, load_envelope, make_envelope, sha256_bytes
+from .artifact import (
+    artifact_paths,
+    dumps_json,
+    load_envelope,
+    make_envelope,
+    read_listed,
+    sha256_bytes,
+)
 from .jsonable import load_schema, validate
 from .obj import _vertex_rows
 
@@ -66,17 +73,7 @@ def parse_parts_obj(data: bytes, rows: list[int], source) -> list[tuple[np.ndarr
 
 def read_obj_checked(json_path: Path, obj_path: Path, sha256: str) -> bytes:
     """The bytes of an artifact's OBJ, checked against the hash its JSON records."""
-    try:
-        obj_bytes = obj_path.read_bytes()
-    except FileNotFoundError:
-        raise DgpcError(f"missing; {json_path.name} needs it beside it (data.obj)",
-                        source=obj_path) from None
-    except OSError as e:
-        raise DgpcError(f"cannot read: {e.strerror or e}", source=obj_path) from None
-    if sha256_bytes(obj_bytes) != sha256:
-        raise DgpcError(f"{obj_path.name} does not match {json_path.name} (edited separately?): "
-                        "its sha256 differs from data.obj_sha256", source=obj_path)
-    return obj_bytes
+    return read_listed(obj_path, sha256, json_path, "data.obj_sha256")
 
 
 @dataclass
