@@ -6,10 +6,10 @@ STAMP  := $(VENV)/.installed
 DEMO   := demo-out
 
 .DEFAULT_GOAL := help
-.PHONY: help setup test demo bench lint clean
+.PHONY: help setup test demo bench lint clean pipelines golden
 
 help: ## Show the targets.
-	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  make %-8s %s\n", $$1, $$2}'
+	@grep -hE '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  make %-8s %s\n", $$1, $$2}'
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -23,7 +23,7 @@ test: setup ## Run the test suite.
 	$(BIN)/python -m pytest -q
 
 lint: setup ## Run ruff.
-	$(BIN)/ruff check dgpc_cli tests benchmarks
+	$(BIN)/ruff check dgpc_cli tests benchmarks samples
 
 demo: setup ## Run the main job on the built-in sample; prints where the cut sheets are.
 	@mkdir -p $(DEMO)
@@ -39,5 +39,14 @@ bench: setup ## Solver speed at the paper's sizes beside a plain spsolve referen
 	$(BIN)/python benchmarks/closest_points_bench.py
 	$(BIN)/python benchmarks/nesting_bench.py
 
+# Pipelines of the paper's applications (pipelines/*.mk): make pipeline-NAME, into $(OUT)/NAME/.
+include pipelines/_common.mk
+include $(filter-out pipelines/_common.mk,$(sort $(wildcard pipelines/*.mk)))
+
+pipelines: $(addprefix pipeline-,$(PIPELINES)) ## Run every pipeline (out/NAME/; ROWS=, COLS= for size).
+
+golden: setup ## Refresh tests/golden/ from small pipeline runs (only after a reviewed change).
+	$(BIN)/python tests/golden/refresh.py
+
 clean: ## Remove the virtualenv and generated output.
-	rm -rf $(VENV) $(DEMO) .pytest_cache .ruff_cache *.egg-info
+	rm -rf $(VENV) $(DEMO) out .pytest_cache .ruff_cache *.egg-info

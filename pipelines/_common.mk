@@ -1,0 +1,13 @@
+# Shared settings of pipelines/*.mk (included from the main Makefile).
+# OUT: output root (each pipeline writes into $(OUT)/NAME/); ROWS, COLS: net size override
+# (each pipeline has its own defaults); DGPC: the command.
+OUT  ?= out
+DGPC ?= $(BIN)/dgpc -q
+PIPELINES := gehry-facade timber-cladding felt-developable bowling-pin-clairaut gridshell
+# $(call size,DEFAULT_ROWS,DEFAULT_COLS) -> ROWSxCOLS, ROWS/COLS overriding the defaults
+rows_or = $(if $(ROWS),$(ROWS),$(1))
+cols_or = $(if $(COLS),$(COLS),$(1))
+
+# Handle files of a net size that is not committed: made by the sample generator.
+samples/handles/%.json:
+	$(BIN)/python samples/generate.py --size $(lastword $(subst -, ,$*))

@@ -1,0 +1,20 @@
+# Verification (paper Fig. 11): a twisted net on the bowling pin, fitted to the pin's surface;
+# its u-lines become geodesics that are not meridians and satisfy Clairaut's r cos α = const.
+PIN_M := $(call rows_or,41)
+PIN_N := $(call cols_or,21)
+PIN   := $(OUT)/bowling-pin-clairaut
+
+$(PIN)/init.json:
+	@mkdir -p $(@D)
+	$(DGPC) init --surface revolution --profile bowling-pin --rows $(PIN_M) --cols $(PIN_N) \
+	    --twist 3.0 --reference-out $(PIN)/pin-ref.obj -o $(basename $@) --force
+
+$(PIN)/pin.json: $(PIN)/init.json
+	$(DGPC) optimize $(basename $<) --mode fit --reference $(PIN)/pin-ref.obj -o $(basename $@) --force
+
+$(PIN)/report-index.html: $(PIN)/pin.json
+	$(DGPC) report $(basename $<) -o $(PIN)/report --force
+
+.PHONY: pipeline-bowling-pin-clairaut
+pipeline-bowling-pin-clairaut: setup $(PIN)/report-index.html ## Bowling pin: Clairaut verification and plot (Fig. 11).
+	@echo "bowling-pin-clairaut: $(PIN)/report-index.html"

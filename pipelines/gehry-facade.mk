@@ -1,0 +1,33 @@
+# Gehry-type facade (paper Fig. 1, 16, 17): one surface of revolution, four isometric
+# deformations of its meridian net (handles from samples/generate.py), one mold for all four,
+# and the panel-to-mold map sheet beside the cut sheets of the first facade's strips.
+GEHRY_M   := $(call rows_or,21)
+GEHRY_N   := $(call cols_or,13)
+GEHRY     := $(OUT)/gehry-facade
+GEHRY_DEF := $(foreach k,1 2 3 4,$(GEHRY)/facade-$(k).json)
+
+$(GEHRY)/base.json: samples/profiles/gehry.csv
+	@mkdir -p $(@D)
+	$(DGPC) init --surface revolution --profile $< --rows $(GEHRY_M) --cols $(GEHRY_N) \
+	    --span 90 -o $(basename $@) --force
+
+$(GEHRY)/facade-%.json: $(GEHRY)/base.json samples/handles/gehry-%-$(GEHRY_M)x$(GEHRY_N).json
+	$(DGPC) optimize $(basename $<) --mode isometric --handles $(word 2,$^) --steps 5 \
+	    -o $(basename $@) --force
+
+$(GEHRY)/mold.json: $(GEHRY_DEF)
+	$(DGPC) extract-mold $(basename $^) --panel-size 2 -o $(basename $@) --force
+
+$(GEHRY)/strips.json: $(GEHRY)/facade-1.json
+	$(DGPC) planarize-strips $(basename $<) -o $(basename $@) --force
+
+$(GEHRY)/flat.json: $(GEHRY)/strips.json
+	$(DGPC) unfold $(basename $<) -o $(basename $@) --force
+
+$(GEHRY)/sheets.json: $(GEHRY)/flat.json $(GEHRY)/mold.json
+	$(DGPC) nest $(basename $<) --mold $(basename $(word 2,$^)) --sheet 2500x1250 --scale 100 \
+	    -o $(basename $@) --force
+
+.PHONY: pipeline-gehry-facade
+pipeline-gehry-facade: setup $(GEHRY)/sheets.json ## Gehry facade: 4 deformations, 1 mold (Fig. 1, 16, 17).
+	@echo "gehry-facade: $(GEHRY)/mold.json, $(GEHRY)/sheets.moldmap.dxf"

@@ -1,0 +1,25 @@
+# Geodesic gridshell (paper Fig. 14): two transversal geodesic nets on one reference, each
+# fitted, then the laths of both families with their cut list.
+GRID_M := $(call rows_or,21)
+GRID_N := $(call cols_or,15)
+GRID   := $(OUT)/gridshell
+
+$(GRID)/a0.json: samples/meshes/gridshell.obj
+	@mkdir -p $(@D)
+	$(DGPC) init $< --method geodesic --direction 1,0,0 --rows $(GRID_M) --cols $(GRID_N) \
+	    -o $(basename $@) --force
+
+$(GRID)/b0.json: samples/meshes/gridshell.obj
+	@mkdir -p $(@D)
+	$(DGPC) init $< --method geodesic --direction 0,1,0 --rows $(GRID_M) --cols $(GRID_N) \
+	    -o $(basename $@) --force
+
+$(GRID)/%.json: $(GRID)/%0.json
+	$(DGPC) optimize $(basename $<) --mode fit -o $(basename $@) --force
+
+$(GRID)/laths.json: $(GRID)/a.json $(GRID)/b.json
+	$(DGPC) laths $(basename $^) -o $(basename $@) --force
+
+.PHONY: pipeline-gridshell
+pipeline-gridshell: setup $(GRID)/laths.json ## Gridshell: two lath families and the cut list (Fig. 14).
+	@echo "gridshell: $(GRID)/laths.json, $(GRID)/laths.csv"

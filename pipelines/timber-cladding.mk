@@ -1,0 +1,28 @@
+# Timber cladding (paper Fig. 2, 18): a wall isometric to a surface of revolution (the meridian
+# net of samples/profiles/wall.csv bent by Minding's λ = 1.25, reached by isometric optimization
+# towards handle targets), congruent planar strips, one cutting template, DXF cut sheets.
+WALL_M := $(call rows_or,21)
+WALL_N := $(call cols_or,13)
+WALL   := $(OUT)/timber-cladding
+
+$(WALL)/base.json: samples/profiles/wall.csv
+	@mkdir -p $(@D)
+	$(DGPC) init --surface revolution --profile $< --rows $(WALL_M) --cols $(WALL_N) \
+	    --span 60 -o $(basename $@) --force
+
+$(WALL)/wall.json: $(WALL)/base.json samples/handles/wall-$(WALL_M)x$(WALL_N).json
+	$(DGPC) optimize $(basename $<) --mode isometric --handles $(word 2,$^) --steps 5 \
+	    -o $(basename $@) --force
+
+$(WALL)/strips.json: $(WALL)/wall.json
+	$(DGPC) planarize-strips $(basename $<) -o $(basename $@) --force
+
+$(WALL)/flat.json: $(WALL)/strips.json
+	$(DGPC) unfold $(basename $<) -o $(basename $@) --force
+
+$(WALL)/sheets.json: $(WALL)/flat.json
+	$(DGPC) nest $(basename $<) --sheet 2500x1250 --scale 100 -o $(basename $@) --force
+
+.PHONY: pipeline-timber-cladding
+pipeline-timber-cladding: setup $(WALL)/sheets.json ## Timber cladding: congruent strips, DXF cut sheets (Fig. 2, 18).
+	@echo "timber-cladding: $$(ls $(WALL)/sheets.sheet*.dxf | tr '\n' ' ')"

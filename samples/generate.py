@@ -1,0 +1,140 @@
+"""Deterministic generator of the inputs of every pipeline (``pipelines/*.mk``).
+
+Run from the repository root: ``.venv/bin/python samples/generate.py``. It writes into
+``samples/`` and is idempotent and byte-deterministic (``repr`` floats, fixed parameters):
+
+- ``profiles/gehry.csv``: a Gehry-type profile with a cylindrical section (paper Fig. 1, 16).
+- ``profiles/wall.csv``: the gently waving profile behind the timber wall (paper Fig. 2, 18).
+- ``handles/gehry-K-MxN.json`` (K = 1..4) and ``handles/wall-MxN.json``: handle targets of
+  ``dgpc optimize --mode isometric``, from an exact isometric bending (Minding, Prop. 4.3) of the
+  meridian net that ``dgpc init --surface revolution --profile samples/profiles/NAME.csv
+  --rows M --cols N --span SPAN`` makes, followed by a rigid motion (so the deformation exists).
+- ``meshes/felt.obj``: a nearly developable bent sheet (paper Fig. 8).
+- ``meshes/gridshell.obj``: a doubly curved height-field patch for the gridshell (Fig. 14).
+
+``--size MxN`` adds handle files of another net size (the pipelines' ROWS/COLS); the sizes in
+``SIZES`` are always written.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from dgpc_cli.io.mesh import write_mesh_obj  # noqa: E402
+from dgpc_cli.surfaces.bent_sheet import bent_sheet  # noqa: E402
+from dgpc_cli.surfaces.minding import minding_bend  # noqa: E402
+from dgpc_cli.surfaces.profiles import read_profile_csv  # noqa: E402
+from dgpc_cli.surfaces.revolution import revolution_net  # noqa: E402
+
+HERE = Path(__file__).resolve().parent
+
+#: Net sizes (rows, cols) whose handle files are committed: the pipelines' defaults and the
+#: small versions of the golden tests.
+SIZES = {"gehry": [(21, 13), (9, 7)], "wall": [(21, 13), (9, 7)]}
+#: ``--span`` of the pipelines' `dgpc init` (degrees); the .mk files use the same values.
+SPAN = {"gehry": 90.0, "wall": 60.0}
+#: The four Gehry-type deformations: Minding λ, rotation axis, angle (rad), shift.
+GEHRY = [(0.8, (1.0, 0.3, 0.2), 0.15, (0.5, 0.0, 0.2)),
+         (0.9, (0.2, 1.0, 0.1), -0.1, (0.0, 0.4, 0.0)),
+         (1.1, (0.0, 0.2, 1.0), 0.2, (-0.3, 0.0, 0.1)),
+         (1.2, (1.0, -0.5, 0.3), -0.12, (0.2, -0.2, -0.3))]
+#: The timber wall: flattened by Minding's λ = 1.25 and moved a little.
+WALL = (1.25, (0.0, 0.0, 1.0), 0.1, (0.3, 0.0, 0.0))
+
+
+def write_bytes(path: Path, data: bytes) -> None:
+    """Write ``data`` unless the file already holds exactly it (idempotent, keeps mtimes)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if path.exists() and path.read_bytes() == data:
+        return
+    path.write_bytes(data)
+    print(f"wrote {path.relative_to(ROOT)}")
+
+
+def profile_csv(r: np.ndarray, h: np.ndarray) -> bytes:
+    lines = ["r,h"] + [f"{a!r},{b!r}" for a, b in zip(r.tolist(), h.tolist(), strict=True)]
+    return ("\n".join(lines) + "\n").encode()
+
+
+def gehry_profile(samples: int = 1201):
+    """r = 3 for h ∈ [0, 2], then a C¹ S-curve down to r = 2 at h = 5."""
+    h = np.linspace(0.0, 5.0, samples)
+    r = np.where(h <= 2.0, 3.0, 2.5 + 0.5 * np.cos(np.pi * (h - 2.0) / 3.0))
+    return r, h
+
+
+def wall_profile(samples: int = 1201):
+    """r = 4 + 0.25 sin(0.8 h), h ∈ [0, 6]: nearly a cylinder, a gently waving wall."""
+    h = np.linspace(0.0, 6.0, samples)
+    return 4.0 + 0.25 * np.sin(0.8 * h), h
+
+
+def rotation(axis, angle: float) -> np.ndarray:
+    k = np.asarray(axis, float) / np.linalg.norm(axis)
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
+
+
+def handle_indices(m: int, n: int) -> list[tuple[int, int]]:
+    """Three boundary handles: the two corners of the first row, the middle of the last."""
+    return [(0, 0), (0, n - 1), (m - 1, n // 2)]
+
+
+def handles_json(csv: Path, m: int, n: int, span: float, motion) -> bytes:
+    lam, axis, angle, shift = motion
+    f = revolution_net(read_profile_csv(csv), m, n, span_deg=span)
+    g = minding_bend(f, lam) @ rotation(axis, angle).T + np.asarray(shift, float)
+    doc = {"handles": [{"index": [u, v], "target": g[u, v].tolist()}
+                       for u, v in handle_indices(m, n)]}
+    return (json.dumps(doc, indent=1, sort_keys=True) + "\n").encode()
+
+
+def gridshell_patch(length: float = 10.0, width: float = 8.0, resolution: float = 0.2):
+    """A doubly curved height field: a dome on a wave, ``(vertices, faces)``."""
+    nx, ny = int(round(length / resolution)) + 1, int(round(width / resolution)) + 1
+    x, y = np.meshgrid(np.linspace(0, length, nx), np.linspace(0, width, ny), indexing="ij")
+    z = (1.5 * np.exp(-((x - 5.0) ** 2 + (y - 4.0) ** 2) / 16.0)
+         + 0.3 * np.sin(0.6 * x) * np.cos(0.4 * y))
+    vid = np.arange(nx * ny).reshape(nx, ny)
+    a, b, c, d = vid[:-1, :-1], vid[1:, :-1], vid[1:, 1:], vid[:-1, 1:]
+    faces = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3),
+                            np.stack([a, c, d], -1).reshape(-1, 3)])
+    return np.stack([x, y, z], -1).reshape(-1, 3), faces
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--size", action="append", default=[], metavar="MxN",
+                    help="also write handle files for an MxN net (repeatable)")
+    args = ap.parse_args(argv)
+    extra = [tuple(int(k) for k in s.lower().split("x")) for s in args.size]
+
+    csvs = {"gehry": HERE / "profiles" / "gehry.csv", "wall": HERE / "profiles" / "wall.csv"}
+    write_bytes(csvs["gehry"], profile_csv(*gehry_profile()))
+    write_bytes(csvs["wall"], profile_csv(*wall_profile()))
+    # the handles are computed from the CSV as written (what `dgpc init` reads back)
+    rel = {k: Path("samples") / "profiles" / v.name for k, v in csvs.items()}
+    for m, n in sorted(set(SIZES["gehry"]) | set(extra)):
+        for k, motion in enumerate(GEHRY, start=1):
+            write_bytes(HERE / "handles" / f"gehry-{k}-{m}x{n}.json",
+                        handles_json(ROOT / rel["gehry"], m, n, SPAN["gehry"], motion))
+    for m, n in sorted(set(SIZES["wall"]) | set(extra)):
+        write_bytes(HERE / "handles" / f"wall-{m}x{n}.json",
+                    handles_json(ROOT / rel["wall"], m, n, SPAN["wall"], WALL))
+    V, F = bent_sheet(10.0, 6.0, bump=1e-4, resolution=0.1)
+    write_bytes(HERE / "meshes" / "felt.obj", write_mesh_obj("felt.obj", V, F))
+    V, F = gridshell_patch()
+    write_bytes(HERE / "meshes" / "gridshell.obj", write_mesh_obj("gridshell.obj", V, F))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,172 @@
+"""What the golden tests run and record: small versions of every pipeline (pipelines/*.mk).
+
+``run(name, out)`` runs ``make pipeline-NAME OUT=out ROWS=.. COLS=..`` from the repository
+root; ``collect(name, out)`` reads the artifacts into a reviewable, JSON-able dict:
+
+- ``metrics``: key figures from ``dgpc inspect`` (SPEC §8), compared with relative tolerance
+  ``REL`` — or both at most ``FLOOR`` (residual-type numbers at solver noise level);
+- ``counts``: integers (parts, classes, sheets, mold pieces, laths), compared exactly;
+- ``nets``: the final nets' coordinates, compared within ``COORD_REL`` × bbox diagonal;
+- ``dxf``: DXF entity counts by layer and type (re-read with ezdxf), compared exactly.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from collections import Counter
+from pathlib import Path
+
+import ezdxf
+from click.testing import CliRunner
+
+from dgpc_cli.cli.main import cli
+from dgpc_cli.io.mesh import load_mesh
+from dgpc_cli.io.net import read_net
+from dgpc_cli.metrics.hausdorff import hausdorff
+
+ROOT = Path(__file__).resolve().parents[2]
+GOLDEN = Path(__file__).resolve().parent
+REL, FLOOR, COORD_REL = 1e-6, 1e-8, 1e-9
+
+#: pipeline -> (ROWS, COLS) of its small version; the handle files of these sizes are in samples/.
+SIZES = {
+    "gehry-facade": (9, 7),
+    "timber-cladding": (9, 7),
+    "felt-developable": (9, 7),
+    "bowling-pin-clairaut": (15, 9),
+    "gridshell": (9, 7),
+}
+
+#: pipeline -> {metric name: (artifact stem, key path in `dgpc inspect` JSON)}
+METRICS = {
+    "gehry-facade": {
+        **{f"R_facade_{k}": (f"facade-{k}", "R") for k in range(1, 5)},
+        **{f"max_strain_facade_{k}": (f"facade-{k}", "strain.max") for k in range(1, 5)},
+        "mold_isometry_error_max": ("mold", "isometry_error_max"),
+        "mold_radius_max": ("mold", "radius_max"),
+        "mold_height": ("mold", "height"),
+        "utilization": ("sheets", "utilization"),
+    },
+    "timber-cladding": {
+        "R": ("wall", "R"),
+        "max_strain": ("wall", "strain.max"),
+        "congruence_error": ("flat", "max_congruence_error"),
+        "flat_max_strain": ("flat", "max_strain"),
+        "utilization": ("sheets", "utilization"),
+    },
+    "felt-developable": {
+        "R": ("felt", "R"),
+        "jacobi_residual_max": ("felt", "jacobi_residual_max"),
+        # developable mode keeps no reference: measured against the sample mesh here
+        "hausdorff_over_diagonal": ("felt", "@samples/meshes/felt.obj"),
+        "congruence_error": ("flat", "max_congruence_error"),
+        "flat_max_strain": ("flat", "max_strain"),
+    },
+    "bowling-pin-clairaut": {
+        "R": ("pin", "R"),
+        "clairaut_max_relative_mad": ("pin", "clairaut.max_relative_mad"),
+        "clairaut_mean_abs": ("pin", "clairaut.mean_abs"),
+        "hausdorff_over_diagonal": ("pin", "hausdorff.net_to_reference_max/hausdorff.diagonal"),
+    },
+    "gridshell": {
+        "R_a": ("a", "R"),
+        "R_b": ("b", "R"),
+        "hausdorff_over_diagonal_a": ("a", "hausdorff.net_to_reference_max/hausdorff.diagonal"),
+        "hausdorff_over_diagonal_b": ("b", "hausdorff.net_to_reference_max/hausdorff.diagonal"),
+    },
+}
+
+#: pipeline -> {count name: (artifact stem, key path)}
+COUNTS = {
+    "gehry-facade": {"mold_pieces": ("mold", "pieces"), "mold_panels": ("mold", "panels"),
+                     "panels_flat": ("mold", "panels_flat"), "parts": ("sheets", "n_parts"),
+                     "sheets": ("sheets", "sheet_count")},
+    "timber-cladding": {"classes": ("flat", "n_classes"), "parts": ("sheets", "n_parts"),
+                        "sheets": ("sheets", "sheet_count")},
+    "felt-developable": {"classes": ("flat", "n_classes"), "parts": ("flat", "n_parts")},
+    "bowling-pin-clairaut": {},
+    "gridshell": {},
+}
+
+#: pipeline -> final nets (their coordinates are recorded)
+NETS = {
+    "gehry-facade": [f"facade-{k}" for k in range(1, 5)],
+    "timber-cladding": ["wall"],
+    "felt-developable": ["felt"],
+    "bowling-pin-clairaut": ["pin"],
+    "gridshell": ["a", "b"],
+}
+
+
+def run(name: str, out: Path) -> Path:
+    """Run the small version of pipeline ``name`` into ``out``; returns ``out/NAME``."""
+    rows, cols = SIZES[name]
+    env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+    subprocess.run(["make", "-s", "-j2", "-o", ".venv/.installed", f"pipeline-{name}",
+                    f"OUT={out}", f"ROWS={rows}", f"COLS={cols}",
+                    f"BIN={Path(sys.executable).parent}"],
+                   cwd=ROOT, check=True, env=env, stdout=subprocess.DEVNULL)
+    return out / name
+
+
+def inspect(stem: Path) -> dict:
+    result = CliRunner().invoke(cli, ["inspect", str(stem)], catch_exceptions=False)
+    assert result.exit_code == 0, result.stderr
+    return json.loads(result.stdout)
+
+
+def lookup(doc: dict, path: str):
+    if "/" in path:
+        a, b = path.split("/")
+        return lookup(doc, a) / lookup(doc, b)
+    for key in path.split("."):
+        doc = doc[key]
+    return doc
+
+
+def _inspect_stem(stem: Path) -> dict:
+    """`dgpc inspect`, with --against the pipeline's initial net for the strain of a deformation."""
+    base = stem.parent / "base.json"
+    args = ["inspect", str(stem)]
+    if stem.name.startswith(("facade-", "wall")) and base.exists():
+        args += ["--against", str(base.with_suffix(""))]
+    result = CliRunner().invoke(cli, args, catch_exceptions=False)
+    assert result.exit_code == 0, result.stderr
+    return json.loads(result.stdout)
+
+
+def collect(name: str, d: Path) -> dict:
+    """The golden record of pipeline ``name`` whose artifacts are in ``d``."""
+    docs: dict[str, dict] = {}
+
+    def get(stem, path):
+        if path.startswith("@"):
+            mesh = load_mesh(ROOT / path[1:])
+            h = hausdorff(read_net(d / stem).f, mesh.vertices, mesh.faces)
+            return h["net_to_reference_max"] / h["diagonal"]
+        if stem not in docs:
+            docs[stem] = _inspect_stem(d / stem)
+        return lookup(docs[stem], path)
+
+    dxf = {}
+    for path in sorted(d.glob("*.dxf")):
+        counter = Counter(f"{e.dxf.layer}:{e.dxftype()}" for e in ezdxf.readfile(path).modelspace())
+        dxf[path.name] = dict(sorted(counter.items()))
+    return {
+        "pipeline": name,
+        "size": list(SIZES[name]),
+        "tolerances": {"metrics_rel": REL, "metrics_floor": FLOOR,
+                       "coordinates_rel_to_bbox_diagonal": COORD_REL, "counts": "exact",
+                       "dxf": "exact"},
+        "metrics": {k: float(get(*v)) for k, v in METRICS[name].items()},
+        "counts": {k: int(get(*v)) for k, v in COUNTS[name].items()},
+        "nets": {stem: read_net(d / stem).f.tolist() for stem in NETS[name]},
+        "dxf": dxf,
+    }
+
+
+def dumps(doc: dict) -> str:
+    return json.dumps(doc, indent=1, sort_keys=True) + "\n"

@@ -1,0 +1,32 @@
+"""Golden-file tests: small versions of every pipeline (pipelines/*.mk, run through make)
+against tests/golden/NAME.json. Refresh with `make golden` only after a reviewed change."""
+
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parent / "golden"))
+
+from pipelines import COORD_REL, FLOOR, GOLDEN, REL, SIZES, collect, run  # noqa: E402
+
+
+@pytest.mark.parametrize("name", list(SIZES))
+def test_pipeline_matches_golden(tmp_path, name):
+    want = json.loads((GOLDEN / f"{name}.json").read_text())
+    got = collect(name, run(name, tmp_path))
+    assert got["size"] == want["size"]
+    assert got["metrics"].keys() == want["metrics"].keys()
+    for key, w in want["metrics"].items():
+        g = got["metrics"][key]
+        assert abs(g - w) <= REL * max(abs(g), abs(w)) or max(abs(g), abs(w)) <= FLOOR, \
+            (key, g, w)
+    assert got["counts"] == want["counts"]
+    assert got["nets"].keys() == want["nets"].keys()
+    for stem, w in want["nets"].items():
+        w, g = np.array(w), np.array(got["nets"][stem])
+        diagonal = np.linalg.norm(np.ptp(w.reshape(-1, 3), axis=0))
+        assert g.shape == w.shape and np.abs(g - w).max() <= COORD_REL * diagonal, stem
+    assert got["dxf"] == want["dxf"]
