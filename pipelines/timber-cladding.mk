@@ -1,5 +1,5 @@
 # Timber cladding (paper Fig. 2, 18): a wall isometric to a surface of revolution (the meridian
-# net of samples/profiles/wall.csv bent by Minding's λ = 1.25, reached by isometric optimization
+# net of samples/profiles/wall.csv bent by Minding's λ = 0.85, reached by isometric optimization
 # towards handle targets), congruent planar strips, one cutting template, DXF cut sheets.
 WALL_M := $(call rows_or,21)
 WALL_N := $(call cols_or,13)

@@ -46,8 +46,8 @@ GEHRY = [(0.8, (1.0, 0.3, 0.2), 0.15, (0.5, 0.0, 0.2)),
          (0.9, (0.2, 1.0, 0.1), -0.1, (0.0, 0.4, 0.0)),
          (1.1, (0.0, 0.2, 1.0), 0.2, (-0.3, 0.0, 0.1)),
          (1.2, (1.0, -0.5, 0.3), -0.12, (0.2, -0.2, -0.3))]
-#: The timber wall: flattened by Minding's λ = 1.25 and moved a little.
-WALL = (1.25, (0.0, 0.0, 1.0), 0.1, (0.3, 0.0, 0.0))
+#: The timber wall: bent by Minding's λ = 0.85 and moved a little.
+WALL = (0.85, (0.0, 0.0, 1.0), 0.1, (0.3, 0.0, 0.0))
 
 
 def write_bytes(path: Path, data: bytes) -> None:

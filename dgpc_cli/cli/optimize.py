@@ -103,7 +103,9 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
     out_json, _ = artifact_paths(output)
     folder = out_json.resolve().parent
     inputs = {"net": file_input(json_path, folder)}
-    data = {k: v for k, v in net.data.items() if k in ("surface",)}
+    # the analytic surface (and its axis, for Clairaut) still carries the net only when the net
+    # was fitted to it; the other modes move the net off it
+    data = {k: v for k, v in net.data.items() if k == "surface" and mode == "fit"}
     if mesh is not None:
         inputs["reference"] = data["reference"] = file_input(mesh.path, folder)
     if handle_ids is not None:
