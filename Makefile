@@ -25,14 +25,8 @@ test: setup ## Run the test suite.
 lint: setup ## Run ruff.
 	$(BIN)/ruff check dgpc_cli tests benchmarks samples
 
-demo: setup ## Run the main job on the built-in sample; prints where the cut sheets are.
-	@mkdir -p $(DEMO)
-	$(BIN)/dgpc -q init --surface revolution --profile catenoid --rows 21 --cols 13 \
-	    --span 120 -o $(DEMO)/wall --force
-	$(BIN)/dgpc -q planarize-strips $(DEMO)/wall -o $(DEMO)/strips --force
-	$(BIN)/dgpc -q unfold $(DEMO)/strips -o $(DEMO)/flat --force
-	$(BIN)/dgpc -q nest $(DEMO)/flat --sheet 2500x1250 --scale 100 -o $(DEMO)/sheets --force
-	@echo "cut sheets: $$(ls $(DEMO)/sheets.sheet*.dxf | tr '\n' ' ')(summary: $(DEMO)/sheets.json)"
+demo: setup ## Run the main job (timber cladding) on the embedded sample; prints where the cut sheets are.
+	@$(MAKE) --no-print-directory pipeline-timber-cladding OUT=$(DEMO)
 
 bench: setup ## Solver speed at the paper's sizes beside a plain spsolve reference.
 	$(BIN)/python benchmarks/solver_bench.py
