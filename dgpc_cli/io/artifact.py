@@ -79,6 +79,24 @@ def resolve_input(record: dict, artifact_json: str | Path) -> Path:
     return Path(artifact_json).resolve().parent / record["path"]
 
 
+def artifact_files(kind: str, stem: str | Path, obj_bytes: bytes, data: dict, *,
+                   inputs: dict, parameters: dict, metrics: dict, status: dict
+                   ) -> dict[Path, bytes]:
+    """The bytes of ``STEM.json`` and ``STEM.obj`` of a ``kind`` artifact (nothing written).
+
+    ``data`` gets the OBJ's name and sha256; the envelope is checked against the kind's JSON
+    Schema, so an invalid artifact is never written. Callers add their extra files (DXF, CSV)
+    to the returned dict and write everything in one :func:`write_files` call.
+    """
+    json_path, obj_path = artifact_paths(stem)
+    data = {**data, "obj": obj_path.name, "obj_sha256": sha256_bytes(obj_bytes)}
+    doc = make_envelope(kind, inputs=inputs, parameters=parameters, data=data,
+                        metrics=metrics, status=status)
+    json_bytes = dumps_json(doc)
+    validate(json.loads(json_bytes), load_schema(kind), json_path)
+    return {json_path: json_bytes, obj_path: obj_bytes}
+
+
 def read_listed(path: Path, sha256: str, json_path: Path, field: str) -> bytes:
     """The bytes of a file an artifact lists (its OBJ, DXF, CSV ...), checked against the sha256
     the JSON records under ``field``; DgpcError naming the file when missing or edited."""

@@ -19,15 +19,17 @@ the units of the net:
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import DgpcError
-from .artifact import artifact_paths, dumps_json, load_envelope, make_envelope, sha256_bytes
-from .jsonable import load_schema, validate
+from .artifact import (
+    artifact_files,
+    artifact_paths,
+    load_envelope,
+)
 from .strips import format_parts_obj, read_obj_checked
 
 KIND = "flat"
@@ -60,15 +62,9 @@ def _obj_bytes(parts: list) -> bytes:
 
 def flat_files(stem: str | Path, art: FlatArtifact) -> dict[Path, bytes]:
     """The bytes of ``STEM.json`` and ``STEM.obj`` (nothing written), schema-checked."""
-    json_path, obj_path = artifact_paths(stem)
-    obj_bytes = _obj_bytes(art.parts)
-    data = {"parts": art.parts, "classes": art.classes, "obj": obj_path.name,
-            "obj_sha256": sha256_bytes(obj_bytes)}
-    doc = make_envelope(KIND, inputs=art.inputs, parameters=art.parameters, data=data,
-                        metrics=art.metrics, status=art.status)
-    json_bytes = dumps_json(doc)
-    validate(json.loads(json_bytes), load_schema(KIND), json_path)
-    return {json_path: json_bytes, obj_path: obj_bytes}
+    data = {"parts": art.parts, "classes": art.classes}
+    return artifact_files(KIND, stem, _obj_bytes(art.parts), data, inputs=art.inputs,
+                          parameters=art.parameters, metrics=art.metrics, status=art.status)
 
 
 def read_flat(stem: str | Path) -> FlatArtifact:

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -29,16 +28,13 @@ from .. import __version__
 from ..errors import DgpcError
 from ..mold.dxf import profile_dxf
 from .artifact import (
+    artifact_files,
     artifact_paths,
-    dumps_json,
     load_envelope,
-    make_envelope,
     read_listed,
     relative_input,
     resolve_input,
-    sha256_bytes,
 )
-from .jsonable import load_schema, validate
 from .obj import net_quads
 
 KIND = "mold"
@@ -182,15 +178,11 @@ def mold_files(stem: str | Path, *, profile: dict, unit: str, segments: dict, se
         "pieces": pieces,
         "nets": nets,
         "panels": panels,
-        "obj": paths["obj"].name,
-        "obj_sha256": sha256_bytes(files["obj"]),
         "files": {key: relative_input(paths[key], folder, files[key]) for key in EXTRA_FILES},
     }
-    doc = make_envelope(KIND, inputs=inputs, parameters=parameters, data=data, metrics=metrics,
-                        status=status)
-    json_bytes = dumps_json(doc)
-    validate(json.loads(json_bytes), load_schema(KIND), paths["json"])
-    return {paths["json"]: json_bytes, **{paths[key]: files[key] for key in files}}
+    out = artifact_files(KIND, stem, files["obj"], data, inputs=inputs, parameters=parameters,
+                         metrics=metrics, status=status)
+    return {**out, **{paths[key]: files[key] for key in EXTRA_FILES}}
 
 
 def _check_file(record: dict, json_path: Path, field: str) -> None:

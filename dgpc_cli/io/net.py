@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -10,15 +9,12 @@ import numpy as np
 
 from ..errors import DgpcError
 from .artifact import (
+    artifact_files,
     artifact_paths,
-    dumps_json,
     load_envelope,
-    make_envelope,
     read_listed,
-    sha256_bytes,
 )
 from .atomic import write_files
-from .jsonable import load_schema, validate
 from .obj import format_net_obj, parse_net_obj
 
 KIND = "net"
@@ -62,17 +58,12 @@ def check_net_array(f, source) -> np.ndarray:
 def net_files(stem: str | Path, net: NetArtifact) -> dict[Path, bytes]:
     """The bytes of ``STEM.json`` and ``STEM.obj`` (nothing written), checked against
     ``net.schema.json``; to be written with other files in one :func:`write_files` call."""
-    json_path, obj_path = artifact_paths(stem)
+    json_path, _ = artifact_paths(stem)
     f = check_net_array(net.f, json_path)
     m, n = f.shape[:2]
-    obj_bytes = format_net_obj(f)
-    data = {**net.data, "shape": [m, n], "geodesic_family": "u", "obj": obj_path.name,
-            "obj_sha256": sha256_bytes(obj_bytes)}
-    doc = make_envelope(KIND, inputs=net.inputs, parameters=net.parameters, data=data,
-                        metrics=net.metrics, status=net.status)
-    json_bytes = dumps_json(doc)
-    validate(json.loads(json_bytes), load_schema(KIND), json_path)
-    return {json_path: json_bytes, obj_path: obj_bytes}
+    data = {**net.data, "shape": [m, n], "geodesic_family": "u"}
+    return artifact_files(KIND, stem, format_net_obj(f), data, inputs=net.inputs,
+                          parameters=net.parameters, metrics=net.metrics, status=net.status)
 
 
 def write_net(stem: str | Path, net: NetArtifact, *, force: bool = False) -> tuple[Path, Path]:

@@ -19,22 +19,18 @@ the sheet outline and each part's outline as closed polylines (``l``), one group
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import DgpcError
 from .artifact import (
+    artifact_files,
     artifact_paths,
-    dumps_json,
     load_envelope,
-    make_envelope,
     read_listed,
     relative_input,
     resolve_input,
-    sha256_bytes,
 )
-from .jsonable import load_schema, validate
 
 KIND = "sheets"
 #: Gap between sheets in the OBJ, as a fraction of the sheet width.
@@ -51,17 +47,14 @@ def sheets_files(stem: str | Path, *, data: dict, extra: dict[str, bytes], obj: 
                  inputs: dict, parameters: dict, metrics: dict, status: dict
                  ) -> dict[Path, bytes]:
     """The bytes of every file of the artifact (nothing written), the JSON schema-checked."""
-    json_path, obj_path = artifact_paths(stem)
+    json_path, _ = artifact_paths(stem)
     folder = json_path.resolve().parent
     paths = {key: extra_path(stem, key) for key in extra}
-    data = {**data, "obj": obj_path.name, "obj_sha256": sha256_bytes(obj),
+    data = {**data,
             "files": {k: relative_input(paths[k], folder, extra[k]) for k in sorted(extra)}}
-    doc = make_envelope(KIND, inputs=inputs, parameters=parameters, data=data,
-                        metrics=metrics, status=status)
-    json_bytes = dumps_json(doc)
-    validate(json.loads(json_bytes), load_schema(KIND), json_path)
-    return {json_path: json_bytes, obj_path: obj,
-            **{paths[k]: extra[k] for k in sorted(extra)}}
+    files = artifact_files(KIND, stem, obj, data, inputs=inputs, parameters=parameters,
+                           metrics=metrics, status=status)
+    return {**files, **{paths[k]: extra[k] for k in sorted(extra)}}
 
 
 @dataclass

@@ -8,7 +8,6 @@ what the OBJ cannot hold (quality, ruling directions, flat rows, polish outcome)
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -17,14 +16,11 @@ import numpy as np
 from .. import __version__
 from ..errors import DgpcError
 from .artifact import (
+    artifact_files,
     artifact_paths,
-    dumps_json,
     load_envelope,
-    make_envelope,
     read_listed,
-    sha256_bytes,
 )
-from .jsonable import load_schema, validate
 from .obj import _vertex_rows
 
 KIND = "strips"
@@ -92,17 +88,13 @@ class StripsArtifact:
 
 def strips_files(stem: str | Path, art: StripsArtifact) -> dict[Path, bytes]:
     """The bytes of ``STEM.json`` and ``STEM.obj`` (nothing written), schema-checked."""
-    json_path, obj_path = artifact_paths(stem)
     ids = [r["id"] for r in art.records]
     obj_bytes = format_parts_obj(f"strips of planar quads ({len(ids)})",
                                  [(i, A, B) for i, (A, B) in zip(ids, art.geometry, strict=True)])
     data = {"source_shape": list(art.source_shape), "geodesic_family": "u",
-            "strips": art.records, "obj": obj_path.name, "obj_sha256": sha256_bytes(obj_bytes)}
-    doc = make_envelope(KIND, inputs=art.inputs, parameters=art.parameters, data=data,
-                        metrics=art.metrics, status=art.status)
-    json_bytes = dumps_json(doc)
-    validate(json.loads(json_bytes), load_schema(KIND), json_path)
-    return {json_path: json_bytes, obj_path: obj_bytes}
+            "strips": art.records}
+    return artifact_files(KIND, stem, obj_bytes, data, inputs=art.inputs,
+                          parameters=art.parameters, metrics=art.metrics, status=art.status)
 
 
 def read_strips(stem: str | Path) -> StripsArtifact:
