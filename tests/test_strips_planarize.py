@@ -182,3 +182,80 @@ def test_strips_artifact_rejects_edited_obj(tmp_path):
     assert "sha256" in result.stderr and not (tmp_path / "f.json").exists()
     doc = json.loads((tmp_path / "s.json").read_text())
     assert doc["kind"] == "strips"
+
+
+def _twisted(tmp_path, name, twist, turn_deg):
+    """A twisted catenoid net (non-planar strips, polished), turned about z by ``turn_deg``."""
+    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 11, "--cols", 4,
+         "--span", 45, "--twist", twist, "-o", tmp_path / name)
+    f = read_net(tmp_path / name).f
+    c, s = np.cos(np.radians(turn_deg)), np.sin(np.radians(turn_deg))
+    return f @ np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def test_mirror_images_share_a_class_only_with_mirror_ok(tmp_path):
+    """Strips of a net twisted by +T and of one twisted by −T are mirror images: two classes
+    (plus the strip joining the halves) without --mirror-ok, one class with it."""
+    plus = _twisted(tmp_path, "p", 0.3, 0.0)
+    minus = _twisted(tmp_path, "m", -0.3, 90.0)
+    write_net(tmp_path / "both", NetArtifact(f=np.concatenate([plus, minus], axis=1)))
+    dgpc("planarize-strips", tmp_path / "both", "-o", tmp_path / "s")
+    assert metrics(tmp_path / "s")["max_planarity"] <= 1e-9
+    counts = {}
+    for flag in ((), ("--mirror-ok",)):
+        stem = tmp_path / f"f{len(flag)}"
+        dgpc("unfold", tmp_path / "s", *flag, "-o", stem)
+        flat = read_flat(stem)
+        counts[flag] = sorted(c["quantity"] for c in flat.classes)
+        for c in flat.classes:
+            assert c["max_relative_error"] <= 1e-3
+        mirrored = sum(p["alignment"]["mirrored"] for p in flat.parts)
+        assert mirrored == (3 if flag else 0)
+    assert counts[()] == [1, 3, 3]
+    assert counts[("--mirror-ok",)] == [1, 6]
+
+
+def test_flat_angle_marks_the_straight_part_of_a_profile_flat(tmp_path):
+    """A profile straight (a cylinder) below h = 2 and curved above: the strip normals do not
+    turn in the straight part, so its rows are flat and take the rulings of the nearest curved
+    rows; a huge --flat-angle makes every row flat (the v-edges stay the rulings)."""
+    profile = tmp_path / "p.csv"
+    h = np.linspace(0.0, 4.0, 81)
+    r = np.where(h <= 2.0, 2.0, 2.0 + 0.25 * (h - 2.0) ** 2)
+    profile.write_text("r,h\n" + "".join(f"{a:.12g},{b:.12g}\n" for a, b in zip(r, h, strict=True)))
+    dgpc("init", "--surface", "revolution", "--profile", profile, "--rows", 17, "--cols", 5,
+         "--span", 60, "-o", tmp_path / "n")
+    f = read_net(tmp_path / "n").f
+    straight = np.hypot(f[:, 0, 0], f[:, 0, 1]) <= 2.0 + 1e-12
+    dgpc("planarize-strips", tmp_path / "n", "-o", tmp_path / "s")
+    rec = read_strips(tmp_path / "s").records[1]
+    flat = np.asarray(rec["flat_rows"])
+    assert flat.any() and not flat.all()
+    k = int(straight.sum())                     # rows 0..k-1 on the cylinder, the rest curved
+    assert straight[:k].all() and 4 < k < len(straight) - 4
+    # a row's normals stencil reaches two rows on (its own tangent and the next normal's)
+    assert flat[:k - 2].all() and not flat[k:].any()
+    assert metrics(tmp_path / "s")["max_planarity"] <= 1e-9
+    dgpc("planarize-strips", tmp_path / "n", "--flat-angle", 3.0, "-o", tmp_path / "all")
+    strips = read_strips(tmp_path / "all")
+    assert all(all(r["flat_rows"]) for r in strips.records)
+    for (A, B), r in zip(strips.geometry, strips.records, strict=True):
+        # meridian strips with the v-edges as rulings: isosceles trapezoids, planar already
+        assert not r["polish"]["applied"]
+        assert np.allclose(A, f[:, r["v"]], atol=1e-12, rtol=0)
+        assert np.allclose(B, f[:, r["v"] + 1], atol=1e-12, rtol=0)
+
+
+def test_polish_short_of_its_tolerance_exits_3_and_writes(tmp_path, monkeypatch):
+    """SPEC §2: an optimization that misses its tolerance exits 3, artifact written, status
+    recorded (here the final projection gets no iterations)."""
+    import dgpc_cli.strips.polish as polish
+    monkeypatch.setattr(polish, "PROJECTION_MAX_ITER", 0)
+    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 9, "--cols", 4,
+         "--span", 60, "--twist", 0.3, "-o", tmp_path / "tw")
+    result = dgpc("planarize-strips", tmp_path / "tw", "-o", tmp_path / "s", expect=3)
+    last = result.stderr.strip().splitlines()[-1]
+    assert last.startswith("Error: ") and "S-v00" in last and "written anyway" in last
+    assert result.stdout.strip().endswith("s.json")
+    doc = json.loads((tmp_path / "s.json").read_text())
+    assert doc["status"]["polish_not_converged"] == ["S-v00", "S-v01", "S-v02"]

@@ -42,21 +42,21 @@ def wave_strips(tmp_path_factory):
     return d
 
 
-@pytest.mark.xfail(strict=True, reason="issue 5 bound not met yet: the planarized wave strips "
-                   "deviate up to 2.1 % of the strip width from the fitted net (bound 1 %)")
 def test_wave_strips_stay_within_one_percent_of_the_width(wave_strips):
-    assert metrics(wave_strips / "s")["max_deviation"] <= 1e-2
+    ms = metrics(wave_strips / "s")
+    assert ms["max_deviation"] <= 1e-2
+    assert ms["max_planarity"] <= 1e-9                    # the polish ends with a projection
 
 
 def test_wave_net_strips(wave_strips):
     tmp_path = wave_strips
     ms, mf = metrics(tmp_path / "s"), metrics(tmp_path / "f")
     assert ms["n_strips"] == 11 and ms["polished"] == 11   # fitted strips are not planar
-    assert ms["max_planarity"] <= 1e-4
-    assert ms["max_deviation"] <= 3e-2                    # see the xfail above (1 % asked)
     assert mf["max_strain"] <= 1e-6                       # planar quads develop exactly
     assert 0 < mf["max_straightness"] <= 5e-2             # geodesics develop almost straight
-    assert mf["n_classes"] == 11                           # a freeform: no two strips alike
     flat = read_flat(tmp_path / "f")
+    # a freeform: (almost) every strip its own class; members of a class agree within 1e-3
+    assert 9 <= mf["n_classes"] <= 11
+    assert all(c["max_relative_error"] <= 1e-3 for c in flat.classes)
     for part in flat.parts:
         assert part["area"] > 0 and len(part["score"]) == 13

@@ -8,6 +8,7 @@ from pathlib import Path
 import click
 
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt, progressbar
+from dgpc_cli.errors import NotConverged
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import read_net
@@ -68,3 +69,7 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, output, force, fmt)
     click.echo(str(out_json))
     log.info("%s: %d strips, max planarity %.3g, max deviation %.3g of the width", out_json,
              len(strips), art.metrics["max_planarity"], art.metrics["max_deviation"])
+    if failed:
+        raise NotConverged(f"the polish of {', '.join(failed)} did not reach its tolerance "
+                           f"(max planarity {art.metrics['max_planarity']:.3g}); written anyway",
+                           source=out_json)

@@ -40,7 +40,9 @@ class PlanarStrip:
     ``A_u B_u``. ``directions (m, 3)`` are the estimated ruling directions (N × N₁, averaged
     across flat rows), ``flat (m,)`` marks those rows, ``limited (m,)`` the rows whose ruling
     was turned towards the v-edge (too oblique for the quad strip), ``params (m, 2)`` the
-    parameters of A, B on the original polylines (row index + fraction). ``planarity`` is the
+    parameters of the construction's A, B on the original polylines (row index + fraction;
+    the polish then lets them slide), ``rulings_ordered`` whether consecutive rulings keep
+    their order along both geodesics (no crossing). ``planarity`` is the
     largest diagonal distance over mean diagonal length, ``deviation`` the largest distance
     from the original strip over its ``width`` (mean v-edge length).
     """
@@ -58,11 +60,7 @@ class PlanarStrip:
     width: float
     construction_planarity: float
     polish: dict
-
-    @property
-    def rulings_ordered(self) -> bool:
-        """Whether consecutive rulings keep their order on both geodesics (no crossing)."""
-        return bool(np.all(np.diff(self.params, axis=0) > 0))
+    rulings_ordered: bool
 
     def record(self) -> dict:
         """The JSON record of the strip (its geometry goes to the OBJ)."""
@@ -93,6 +91,12 @@ def parse_strip_range(text: str | None, n: int) -> list[int]:
     return list(range(v0, v1 + 1))
 
 
+def _forward(X: np.ndarray, curve: np.ndarray) -> bool:
+    """Whether every segment of the new boundary ``X (m, 3)`` runs forward along the original
+    one ``curve (m, 3)`` (positive projection on the corresponding original segment)."""
+    return bool(np.all(np.einsum("ij,ij->i", np.diff(X, axis=0), np.diff(curve, axis=0)) > 0))
+
+
 def planarize_strips(f: np.ndarray, columns: list[int], *, flat_angle: float = FLAT_ANGLE,
                      polish_above: float = POLISH_ABOVE, max_shift: float = MAX_SHIFT,
                      progress: Callable[[int], None] | None = None) -> list[PlanarStrip]:
@@ -119,11 +123,10 @@ def planarize_strips(f: np.ndarray, columns: list[int], *, flat_angle: float = F
         before = float(np.max(planarity_defect(a, b)))
         polish = {"applied": False}
         if before > polish_above:
-            result = polish_strip(a, b, cut_tangents(P[i], Q[i], params[i]))
+            result = polish_strip(a, b, P[i], Q[i], cut_tangents(P[i], Q[i], params[i]))
             a, b = result.A, result.B
-            polish = {"applied": True, "status": result.status, "mode": result.mode,
-                      "iterations": result.iterations,
-                      "R": result.R}
+            polish = {"applied": True, "status": result.status,
+                      "iterations": result.iterations, "R": result.R}
             log.debug("%s: polish %s after %d iterations", strip_id(v, n), result.status,
                       result.iterations)
         width = strip_width(P[i], Q[i])
@@ -132,7 +135,8 @@ def planarize_strips(f: np.ndarray, columns: list[int], *, flat_angle: float = F
             limited=limited[i],
             params=params[i], planarity=float(np.max(planarity_defect(a, b))),
             deviation=deviation(a, b, P[i], Q[i]) / width, width=width,
-            construction_planarity=before, polish=polish)
+            construction_planarity=before, polish=polish,
+            rulings_ordered=_forward(a, P[i]) and _forward(b, Q[i]))
         if not strip.rulings_ordered:
             log.warning("%s: rulings cross (their cuts with the geodesics are out of order)",
                         strip.id)

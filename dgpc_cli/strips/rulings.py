@@ -160,7 +160,9 @@ def cut_rulings(P, Q, rulings, normals) -> tuple[np.ndarray, np.ndarray]:
 
     The end rulings are trimmed to the strip: where the plane through the end v-edge's midpoint
     would cut a geodesic beyond its end, the plane is moved (parallel) to pass through that end
-    vertex, so the planar strip never reaches past the original one.
+    vertex, so the planar strip never reaches past the original one; where that trimmed end
+    ruling would cross its neighbour, the end v-edge itself is the end ruling (the polish then
+    makes that quad planar).
     """
     m = P.shape[1]
     plane_n = unit(np.cross(rulings, normals))
@@ -178,6 +180,10 @@ def cut_rulings(P, Q, rulings, normals) -> tuple[np.ndarray, np.ndarray]:
         use_q = out & ~use_p & inside(through_q)
         sP[:, u] = np.where(use_p, end, np.where(use_q, through_q, sP[:, u]))
         sQ[:, u] = np.where(use_p, through_p, np.where(use_q, end, sQ[:, u]))
+    for u, nb, sign in ((0, 1, 1.0), (m - 1, m - 2, -1.0)):
+        crossed = (sign * (sP[:, nb] - sP[:, u]) <= 0) | (sign * (sQ[:, nb] - sQ[:, u]) <= 0)
+        sP[:, u] = np.where(crossed, float(u), sP[:, u])
+        sQ[:, u] = np.where(crossed, float(u), sQ[:, u])
     return point_at(P, sP), point_at(Q, sQ), np.stack([sP, sQ], axis=-1)
 
 

@@ -1,4 +1,4 @@
-"""Planarity of quads and closeness to boundary curves, for discrete developable strips
+"""Planarity of quads and closeness to the original strip, for discrete developable strips
 (paper §6.2.4: "we first transform each strip into a discrete developable strip (strip with
 *planar* quadrilateral faces)").
 
@@ -7,9 +7,12 @@ The terms live on their own variable vector (:class:`QuadGridLayout`): the verti
 constraint stays at most quadratic (Tang et al. 2014, as in paper §5.1):
 
 * planarity: ``⟨n_q, c_(i+1) − c_i⟩ = 0`` for the four edges of quad q and ``⟨n_q, n_q⟩ − 1 = 0``;
-* closeness: ``(I − t tᵀ)(p − c) = 0`` with c the vertex's start point on the original
-  boundary geodesic and t the geodesic's unit tangent there: the vertex may slide along the
-  tangent line, i.e. (to first order) along the geodesic, but not away from it.
+* lateral: ``⟨b, p − c⟩ = 0`` with c the vertex's start point on its boundary geodesic and b the
+  unit surface direction across the geodesic there: the vertex keeps the strip's width but may
+  slide along the geodesic and leave the surface along its normal;
+* surface closeness: ``⟨n_k, s_k − π(s_k)⟩`` for sample points ``s_k`` (fixed affine combinations
+  of the vertices: corners, edge midpoints, centres of the quads) against their closest points
+  π(s_k) on the original strip, whose normal there is n_k (the point-to-plane distance of §5.1).
 
 Both are ``term(x, layout, ...) -> (phi, J)`` with a value-independent COO pattern.
 """
@@ -107,18 +110,49 @@ def planarity(x, layout: QuadGridLayout):
     return phi, J
 
 
-def closeness(x, layout: QuadGridLayout, points, tangents):
-    """Residuals ``(I − t tᵀ)(p − c)`` (3 per vertex) against the lines through ``points
-    (m, k, 3)`` along the unit ``tangents (m, k, 3)``: zero where a vertex lies on the tangent
-    line of its original boundary geodesic at its start point, free to slide along it.
-    Linear in x."""
+def lateral(x, layout: QuadGridLayout, points, directions, vertex_ids=None):
+    """Residuals ``⟨d_k, p_k − c_k⟩`` (1 per row) for the vertices ``vertex_ids`` (default: all,
+    in id order) against the start points ``points (k, 3)`` along the unit ``directions
+    (k, 3)``. With d = b (across the geodesic) the vertex keeps its side of the strip; with
+    d = t (along it) it cannot slide. Linear in x."""
     p, _ = layout.split(x)
-    t = np.asarray(tangents, dtype=float).reshape(-1, 3)
-    P = np.eye(3)[None] - t[:, :, None] * t[:, None, :]                     # (V, 3, 3)
-    phi = np.einsum("kij,kj->ki", P, p - np.asarray(points, dtype=float).reshape(-1, 3)).ravel()
-    rows = np.arange(phi.size).reshape(-1, 3)[:, :, None]                    # (V, 3, 1)
-    cols = layout.f_cols(layout.vid.ravel())[:, None, :]                     # (V, 1, 3)
-    return phi, jacobian(phi.size, layout.size, (rows, cols, P))
+    ids = layout.vid.ravel() if vertex_ids is None else np.asarray(vertex_ids)
+    d = np.asarray(directions, dtype=float).reshape(-1, 3)
+    phi = np.einsum("kj,kj->k", p[ids] - np.asarray(points, dtype=float).reshape(-1, 3), d)
+    rows = np.arange(phi.size)[:, None]
+    return phi, jacobian(phi.size, layout.size, (rows, layout.f_cols(ids), d))
+
+
+def quad_samples(layout: QuadGridLayout) -> tuple[np.ndarray, np.ndarray]:
+    """Sample points of the quads as affine combinations of the vertices: every vertex, the
+    midpoint of every edge and the centre of every quad (the 3 × 3 samples of each quad's
+    bilinear patch, each taken once). Returns vertex ids ``(K, 4)`` and coefficients
+    ``(K, 4)`` (unused slots have coefficient 0)."""
+    vid = layout.vid
+    groups = (([vid], 1.0), ([vid[:, :-1], vid[:, 1:]], 0.5), ([vid[:-1], vid[1:]], 0.5),
+              ([layout.corners[:, i] for i in range(4)], 0.25))
+    ids, coefficients = [], []
+    for members, c in groups:
+        cols = [np.ravel(a) for a in members]
+        used = len(cols)
+        ids.append(np.stack(cols + [cols[0]] * (4 - used), axis=-1))
+        coefficients.append(np.broadcast_to([c] * used + [0.0] * (4 - used), (cols[0].size, 4)))
+    return np.concatenate(ids), np.concatenate(coefficients)
+
+
+def surface_closeness(x, layout: QuadGridLayout, reference, samples):
+    """Residuals ``⟨n_k, s_k − π(s_k)⟩`` (1 per sample) of the sample points ``s_k = Σ c_kj p_j``
+    (``samples = (ids, coefficients)`` of :func:`quad_samples`) against their closest points on
+    ``reference`` (a :class:`dgpc_cli.core.reference.ReferenceSurface`; recomputed at every x,
+    held fixed in the Jacobian, as in the approximation term of §5.1)."""
+    p, _ = layout.split(x)
+    ids, coefficients = samples
+    s = np.einsum("kc,kcj->kj", coefficients, p[ids])
+    foot, n = reference.closest(s)
+    phi = np.einsum("kj,kj->k", s - foot, n)
+    rows = np.arange(phi.size)[:, None, None]
+    return phi, jacobian(phi.size, layout.size,
+                         (rows, layout.f_cols(ids), coefficients[:, :, None] * n[:, None, :]))
 
 
 def anchor(x, layout: QuadGridLayout, targets):
