@@ -1,7 +1,7 @@
 # Nearly developable felt shape (paper Fig. 8, 12, 15): geodesic net on the bent sheet,
 # developable optimization (constant strip width, rulings), planar strips, developed strips.
-FELT_M := $(call rows_or,21)
-FELT_N := $(call cols_or,13)
+FELT_M := $(call rows_or,41)
+FELT_N := $(call cols_or,25)
 FELT   := $(OUT)/felt-developable
 
 $(FELT)/init.json: samples/meshes/felt.obj

@@ -1,7 +1,7 @@
 # Geodesic gridshell (paper Fig. 14): two transversal geodesic nets on one reference, each
 # fitted, then the laths of both families with their cut list.
-GRID_M := $(call rows_or,21)
-GRID_N := $(call cols_or,15)
+GRID_M := $(call rows_or,31)
+GRID_N := $(call cols_or,21)
 GRID   := $(OUT)/gridshell
 
 $(GRID)/a0.json: samples/meshes/gridshell.obj

@@ -20,6 +20,9 @@ class FrozenReference:
     def closest(self, q):
         return self.p, self.n
 
+    def closest_on_boundary(self, q):
+        return self.p[: len(q)], self.n[: len(q)]
+
 
 def _random_state(layout, rng):
     """A generic point in variable space: positions, non-unit e and w off the edge lengths."""
@@ -43,6 +46,10 @@ def _bound(name, layout, rng):
         # (point-to-plane rows), half with a tangential part (point-to-point rows)
         frozen = FrozenReference(layout, rng)
         return lambda x: TERMS[name](x, layout, frozen)
+    if name == "boundary":
+        frozen = FrozenReference(layout, rng)
+        rim = np.array([0, 1, 2, layout.n - 1, layout.n_vertices - 1])
+        return lambda x: TERMS[name](x, layout, frozen, rim)
     return lambda x: TERMS[name](x, layout)
 
 

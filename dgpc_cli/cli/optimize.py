@@ -9,6 +9,7 @@ import click
 
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt, progressbar
 from dgpc_cli.core.reference import ReferenceSurface
+from dgpc_cli.core.solver import Schedule
 from dgpc_cli.core.solver.linear import BACKENDS
 from dgpc_cli.errors import DgpcError, NotConverged
 from dgpc_cli.io.artifact import artifact_paths, file_input, resolve_input
@@ -19,7 +20,7 @@ from dgpc_cli.io.net import NetArtifact, net_files, read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.stages.inspect import summarize
 from dgpc_cli.stages.modes import MODES, SOFT, describe_weights, mode_weights
-from dgpc_cli.stages.optimize import optimize_net
+from dgpc_cli.stages.optimize import boundary_vertices, optimize_net
 from dgpc_cli.tolerances import tol as TOL
 
 log = logging.getLogger(__name__)
@@ -93,9 +94,12 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
             bar.update(k + 1 - last[0])
             last[0] = k + 1
 
+        surface = ReferenceSurface.from_mesh(mesh) if mesh is not None else None
+        rim = (boundary_vertices(net.f, surface)
+               if surface is not None and schedules.get("boundary", Schedule.constant(0)).end > 0
+               else None)
         outcome = optimize_net(
-            net.f, schedules,
-            reference=ReferenceSurface.from_mesh(mesh) if mesh is not None else None,
+            net.f, schedules, reference=surface, boundary_ids=rim,
             handle_ids=handle_ids, handle_targets=handle_targets, soft=SOFT[mode], steps=steps,
             max_iter=max_iter, tol=tol, backend=backend, progress=progress)
         bar.update(steps * max_iter - last[0])
@@ -111,6 +115,8 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
     if handle_ids is not None:
         inputs["handles"] = file_input(handles, folder)
         data["handles"] = {"ids": handle_ids.tolist(), "targets": handle_targets.tolist()}
+    if rim is not None and len(rim):
+        data["boundary"] = {"ids": rim.tolist()}
     result = NetArtifact(
         f=outcome.f,
         parameters={"mode": mode, "weights": describe_weights(schedules), "steps": steps,

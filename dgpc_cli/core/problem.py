@@ -46,6 +46,8 @@ class Problem:
     handle_ids, handle_targets : arrays, optional
         Handle vertex ids ``(l,)`` and targets ``(l, 3)`` (model units).
     reference : object with ``closest(points) -> (p, n)`` and ``scaled(s)``, optional
+    boundary_ids : array, optional
+        Net vertices kept on the reference's boundary by the ``boundary`` term.
     """
 
     layout: NetLayout
@@ -56,6 +58,7 @@ class Problem:
     handle_targets: np.ndarray | None = None
     reference: object | None = None
     soft: tuple[str, ...] = SOFT_TERMS
+    boundary_ids: np.ndarray | None = None
     _scaled_reference: object | None = field(default=None, init=False, repr=False)
 
     def active(self) -> list[str]:
@@ -66,6 +69,9 @@ class Problem:
             if sched is None or (sched.start == 0 and sched.end == 0):
                 continue
             if name == "approximation" and self.reference is None:
+                continue
+            if name == "boundary" and (self.reference is None or self.boundary_ids is None
+                                       or len(self.boundary_ids) == 0):
                 continue
             if name == "handles" and self.handle_ids is None:
                 continue
@@ -84,10 +90,13 @@ class Problem:
             ids = self.handle_ids
             p = (self.handle_targets if targets is None else targets) / s
             return lambda x: fn(x, lay, ids, p)
-        if name == "approximation":
+        if name in ("approximation", "boundary"):
             if self._scaled_reference is None:
                 self._scaled_reference = self.reference.scaled(1.0 / s)
             ref = self._scaled_reference
+            if name == "boundary":
+                ids = self.boundary_ids
+                return lambda x: fn(x, lay, ref, ids)
             return lambda x: fn(x, lay, ref)
         return lambda x: fn(x, lay)
 
@@ -112,7 +121,7 @@ class Problem:
         """
         own = mean_edge_length(f)
         rescaled = Problem(self.layout, own, self.weights, self.f0, self.handle_ids,
-                           self.handle_targets, self.reference, self.soft)
+                           self.handle_targets, self.reference, self.soft, self.boundary_ids)
         x = rescaled.x_from_vertices(f)
         return {t.name: float(np.linalg.norm(t.func(x)[0])) for t in rescaled.terms()}
 

@@ -41,6 +41,7 @@ class ReferenceSurface:
             a.setflags(write=False)
         self._tree = igl.AABB()
         self._tree.init(V, F)
+        self._boundary: tuple[np.ndarray, np.ndarray] | None = None
 
     @classmethod
     def from_mesh(cls, mesh) -> ReferenceSurface:
@@ -68,3 +69,35 @@ class ReferenceSurface:
             return np.zeros((0, 3)), np.zeros((0, 3))
         _, face_ids, p = self._tree.squared_distance(self.vertices, self.faces, P)
         return np.asarray(p, dtype=np.float64).reshape(-1, 3), self.face_normals[face_ids]
+
+    @property
+    def boundary_segments(self) -> tuple[np.ndarray, np.ndarray]:
+        """End points ``a, b (s, 3)`` of the boundary edges (edges of one face only); empty for a
+        closed mesh."""
+        if self._boundary is None:
+            F = self.faces
+            edges = np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1)
+            unique, counts = np.unique(edges, axis=0, return_counts=True)
+            once = unique[counts == 1]
+            self._boundary = (self.vertices[once[:, 0]], self.vertices[once[:, 1]])
+        return self._boundary
+
+    def closest_on_boundary(self, points: np.ndarray, chunk: int = 256):
+        """Closest points ``b (k, 3)`` on the mesh boundary to ``points (k, 3)`` and the unit
+        tangents ``t (k, 3)`` of the boundary edges they lie on. ValueError for a closed mesh."""
+        a, b = self.boundary_segments
+        if len(a) == 0:
+            raise ValueError("the mesh has no boundary")
+        P = np.asarray(points, dtype=float).reshape(-1, 3)
+        d = b - a
+        dd = np.maximum(np.einsum("ij,ij->i", d, d), np.finfo(float).tiny)
+        foot, tangent = np.empty_like(P), np.empty_like(P)
+        for lo in range(0, len(P), chunk):
+            q = P[lo:lo + chunk, None, :]                                      # (c, 1, 3)
+            s = np.clip(np.einsum("csj,sj->cs", q - a, d) / dd, 0.0, 1.0)      # (c, s)
+            c = a + s[..., None] * d                                           # (c, s, 3)
+            best = np.argmin(np.einsum("csj,csj->cs", q - c, q - c), axis=1)
+            rows = np.arange(len(best))
+            foot[lo:lo + chunk] = c[rows, best]
+            tangent[lo:lo + chunk] = d[best] / np.sqrt(dd[best])[:, None]
+        return foot, tangent

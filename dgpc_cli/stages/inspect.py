@@ -65,12 +65,14 @@ def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact 
     m, n = net.shape
     weights = recorded_weights(net)
     handles = net.data.get("handles")
+    rim = net.data.get("boundary")
     problem = Problem(
         NetLayout(m, n), mean_edge_length(f), weights,
         f0=against.f if against is not None else None,
         handle_ids=np.asarray(handles["ids"], dtype=np.int64) if handles else None,
         handle_targets=np.asarray(handles["targets"], dtype=float) if handles else None,
         reference=ReferenceSurface.from_mesh(reference) if reference is not None else None,
+        boundary_ids=np.asarray(rim["ids"], dtype=np.int64) if rim else None,
     )
     norms = problem.residual_norms(f)
     return norms, constraint_error(norms, {k: weights[k] for k in norms})

@@ -7,19 +7,21 @@ from dgpc_cli.core.solver import Schedule, parse_weight
 
 #: Weights per mode, in the notation of ``--weight`` (a value or a schedule ``A->B``).
 #: ``net`` is always 1. Data-bound terms take part only when their data is given:
-#: approximation needs ``--reference``, handles ``--handles``, isometry the input net.
+#: approximation needs ``--reference``, handles ``--handles``, isometry the input net;
+#: boundary needs net rim vertices that start on the reference's boundary.
 MODES: dict[str, dict[str, str]] = {
-    "fit": {"gpc": "1", "approximation": "1", "fairness": "0.01->0"},
+    "fit": {"gpc": "1", "approximation": "1", "boundary": "1", "fairness": "0.01->0"},
     "developable": {"gpc": "1", "arclength": "1", "equal_strip_width": "1", "developable": "1",
-                    "approximation": "1"},
+                    "approximation": "1", "boundary": "1"},
     "revolution": {"gpc": "1", "equal_strip_width": "1", "approximation": "1", "handles": "1"},
     "isometric": {"gpc": "1", "isometry": "1", "handles": "1", "fairness": "0.01->0"},
 }
 
 #: Terms each mode treats as soft (they pull, the tolerance does not apply to them): the
 #: reference of a nearly developable fit is not exactly developable (paper Fig. 8: R = 0.29),
-#: nor need a reference be isometric to a surface of revolution.
-SOFT = {"fit": ("fairness",), "developable": ("fairness", "approximation"),
+#: nor need a reference be isometric to a surface of revolution. The reference's boundary
+#: only pulls: a geodesic net need not end on it everywhere.
+SOFT = {"fit": ("fairness", "boundary"), "developable": ("fairness", "approximation", "boundary"),
         "revolution": ("fairness", "approximation"), "isometric": ("fairness",)}
 
 #: What ``dgpc init`` nets are measured against: discrete geodesic parallel coordinates.

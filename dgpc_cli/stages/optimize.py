@@ -48,6 +48,25 @@ class OptimizeOutcome:
         }
 
 
+#: Net boundary vertices closer than this fraction of the mean edge length to the reference's
+#: boundary start on it; the ``boundary`` term keeps them there.
+BOUNDARY_SNAP = 0.05
+
+
+def boundary_vertices(f: np.ndarray, reference, snap: float = BOUNDARY_SNAP) -> np.ndarray:
+    """Ids of the vertices on the rim of the net ``f (m, n, 3)`` that lie on the boundary of
+    ``reference`` (within ``snap`` × mean edge length); empty for a closed reference."""
+    f = np.asarray(f, dtype=float)
+    m, n = f.shape[:2]
+    vid = np.arange(m * n).reshape(m, n)
+    rim = np.unique(np.concatenate([vid[0], vid[-1], vid[:, 0], vid[:, -1]]))
+    if len(reference.boundary_segments[0]) == 0:
+        return rim[:0]
+    q = f.reshape(-1, 3)[rim]
+    b, _ = reference.closest_on_boundary(q)
+    return rim[np.linalg.norm(q - b, axis=1) <= snap * mean_edge_length(f)]
+
+
 def optimize_net(
     f: np.ndarray,
     weights: dict[str, Schedule],
@@ -57,6 +76,7 @@ def optimize_net(
     handle_targets: np.ndarray | None = None,
     isometry_to: np.ndarray | None = None,
     soft: tuple[str, ...] = ("fairness",),
+    boundary_ids: np.ndarray | None = None,
     steps: int = 1,
     max_iter: int = 200,
     tol: float = 1e-10,
@@ -69,8 +89,10 @@ def optimize_net(
     handles to ``start + s/steps · (target − start)``, and every step is a guided-projection run
     (the last one must reach ``tol``). ``isometry_to`` is the net whose edge lengths w⁰ (and
     boundary angles) the isometry term keeps (default: the input). ``soft`` names the terms
-    the tolerance does not apply to (see ``modes.SOFT``). The returned ``R`` is the paper's
-    constraint error at the returned vertices, net rescaled to mean edge length 1 (§6.2.5).
+    the tolerance does not apply to (see ``modes.SOFT``). ``boundary_ids`` are the vertices the
+    ``boundary`` term keeps on the reference's boundary (see :func:`boundary_vertices`). The
+    returned ``R`` is the paper's constraint error at the returned vertices, net rescaled to
+    mean edge length 1 (§6.2.5).
     """
     f = np.asarray(f, dtype=float)
     m, n = f.shape[:2]
@@ -81,7 +103,7 @@ def optimize_net(
                       f0=(f if isometry_to is None else np.asarray(isometry_to, dtype=float))
                       if "isometry" in weights else None,
                       handle_ids=handle_ids, handle_targets=handle_targets,
-                      reference=reference, soft=soft)
+                      reference=reference, soft=soft, boundary_ids=boundary_ids)
     if not problem.active():
         raise DgpcError("no constraint term is active", source="--weight")
     x = problem.x_from_vertices(f)
@@ -116,7 +138,8 @@ def optimize_net(
         # damping keeps it close).
         hard_only = Problem(layout, problem.scale, {**weights, **{name: Schedule.constant(0.0)
                                                                  for name in pulling}},
-                            problem.f0, handle_ids, handle_targets, reference, problem.soft)
+                            problem.f0, handle_ids, handle_targets, reference, problem.soft,
+                            boundary_ids)
         log.info("projecting onto the hard constraints without %s", ", ".join(pulling))
         result = guided_projection(x, hard_only.terms(), max_iter=max_iter, tol=tol,
                                    backend=backend, retract=layout.orient_edges,

@@ -1,6 +1,7 @@
 """Constraint terms of SPEC §4. Each is ``term(x, layout, ...) -> (phi, J)``."""
 
 from dgpc_cli.core.constraints.approximation import approximation
+from dgpc_cli.core.constraints.boundary import boundary
 from dgpc_cli.core.constraints.fairness import fairness
 from dgpc_cli.core.constraints.gpc import gpc
 from dgpc_cli.core.constraints.handles import handles
@@ -22,6 +23,7 @@ TERMS = {
     "developable": developable,
     "isometry": isometry,
     "approximation": approximation,
+    "boundary": boundary,
     "handles": handles,
     "fairness": fairness,
 }
