@@ -16,3 +16,19 @@ def assert_jacobian_matches_finite_differences(term, x, size, h=1e-6, rtol=1e-7)
         fd[:, c] = (term(x + dx)[0] - term(x - dx)[0]) / (2 * h)
     assert np.abs(J - fd).max() <= rtol * max(1.0, np.abs(J).max())
     assert np.abs(J).max() > 0, "the Jacobian is identically zero"
+
+
+class FrozenReference:
+    """Fixed closest points and normals (or boundary tangents) for ``k`` query points, whatever
+    the query: the approximation-type terms hold them fixed in their Jacobians."""
+
+    def __init__(self, k, rng):
+        n = rng.standard_normal((k, 3))
+        self.n = n / np.linalg.norm(n, axis=1, keepdims=True)
+        self.p = rng.standard_normal((k, 3))
+
+    def closest(self, q):
+        return self.p[: len(q)], self.n[: len(q)]
+
+    def closest_on_boundary(self, q):
+        return self.p[: len(q)], self.n[: len(q)]

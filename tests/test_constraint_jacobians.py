@@ -2,26 +2,11 @@
 
 import numpy as np
 import pytest
-from jacobian_check import assert_jacobian_matches_finite_differences
+from jacobian_check import FrozenReference, assert_jacobian_matches_finite_differences
 
 from dgpc_cli.core.constraints import TERMS
 from dgpc_cli.core.constraints.isometry import boundary_angle_pairs
 from dgpc_cli.core.layout import NetLayout
-
-
-class FrozenReference:
-    """Fixed closest points and normals, whatever the query (the Jacobian holds them fixed)."""
-
-    def __init__(self, layout, rng):
-        n = rng.standard_normal((layout.n_vertices, 3))
-        self.n = n / np.linalg.norm(n, axis=1, keepdims=True)
-        self.p = rng.standard_normal((layout.n_vertices, 3))
-
-    def closest(self, q):
-        return self.p, self.n
-
-    def closest_on_boundary(self, q):
-        return self.p[: len(q)], self.n[: len(q)]
 
 
 def _random_state(layout, rng):
@@ -44,10 +29,10 @@ def _bound(name, layout, rng):
     if name == "approximation":
         # closest points frozen (as the term's Jacobian assumes): half of them normal offsets
         # (point-to-plane rows), half with a tangential part (point-to-point rows)
-        frozen = FrozenReference(layout, rng)
+        frozen = FrozenReference(layout.n_vertices, rng)
         return lambda x: TERMS[name](x, layout, frozen)
     if name == "boundary":
-        frozen = FrozenReference(layout, rng)
+        frozen = FrozenReference(layout.n_vertices, rng)
         rim = np.array([0, 1, 2, layout.n - 1, layout.n_vertices - 1])
         return lambda x: TERMS[name](x, layout, frozen, rim)
     return lambda x: TERMS[name](x, layout)

@@ -3,7 +3,7 @@ against finite differences, fixed patterns, and what their residuals measure."""
 
 import numpy as np
 import pytest
-from jacobian_check import assert_jacobian_matches_finite_differences
+from jacobian_check import FrozenReference, assert_jacobian_matches_finite_differences
 
 from dgpc_cli.core.constraints.planarity import (
     QuadGridLayout,
@@ -17,18 +17,6 @@ from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.strips.quality import bilinear_samples
 
 NAMES = ["planarity", "lateral", "surface_closeness", "anchor"]
-
-
-class FrozenReference:
-    """Fixed closest points and normals, whatever the query (the Jacobian holds them fixed)."""
-
-    def __init__(self, k, rng):
-        n = rng.standard_normal((k, 3))
-        self.n = n / np.linalg.norm(n, axis=1, keepdims=True)
-        self.p = rng.standard_normal((k, 3))
-
-    def closest(self, q):
-        return self.p, self.n
 
 
 def _state(layout, rng):
