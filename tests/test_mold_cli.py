@@ -26,16 +26,21 @@ def mold_doc(stem):
     return json.loads((stem.parent / f"{stem.name}.json").read_text())
 
 
+def _wavy_net(tmp_path, m, n):
+    """Our wavy profile and the m×n meridian net (90°) of its surface, written as ``n0``."""
+    prof = wavy_profile()
+    csv = write_profile_csv(tmp_path / "wavy.csv", prof.r, prof.h)
+    dgpc("init", "--surface", "revolution", "--profile", csv, "--rows", m, "--cols", n,
+         "--span", 90, "-o", tmp_path / "n0")
+    return prof, read_net(tmp_path / "n0").f
+
+
 def test_truth_recovers_our_profile_and_minding_gives_an_isometric_one(tmp_path):
     """A 90° sector of our own profile, bent isometrically (Minding λ = 0.8 and a rigid motion):
     --segments 4(n−1) recovers r(u), h(u); the default N = n−1 gives another, isometric
     surface of revolution (λ = 1/4 of the original's radius, roughly)."""
     m, n = 17, 13
-    prof = wavy_profile()
-    csv = write_profile_csv(tmp_path / "wavy.csv", prof.r, prof.h)
-    dgpc("init", "--surface", "revolution", "--profile", csv, "--rows", m, "--cols", n,
-         "--span", 90, "-o", tmp_path / "n0")
-    f0 = read_net(tmp_path / "n0").f
+    prof, f0 = _wavy_net(tmp_path, m, n)
     net = read_net(tmp_path / "n0")
     net.f = deform(f0, 0.8, axis=(1, 2, 0.5), angle=0.7, shift=(3, -1, 2))
     write_net(tmp_path / "bent", net)
@@ -263,11 +268,7 @@ def test_truth_through_an_isometric_optimization(tmp_path):
     bending (λ = 0.8) takes them; the optimizer finds an isometric deformation (R ≤ 1e-8), and
     extract-mold recovers the profile from it."""
     m, n = 17, 13
-    prof = wavy_profile()
-    csv = write_profile_csv(tmp_path / "wavy.csv", prof.r, prof.h)
-    dgpc("init", "--surface", "revolution", "--profile", csv, "--rows", m, "--cols", n,
-         "--span", 90, "-o", tmp_path / "n0")
-    f0 = read_net(tmp_path / "n0").f
+    prof, f0 = _wavy_net(tmp_path, m, n)
     g = deform(f0, 0.8)
     idx = [(0, 0), (0, n - 1), (m - 1, n // 2)]
     handles = tmp_path / "handles.json"
