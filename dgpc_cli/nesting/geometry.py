@@ -128,6 +128,19 @@ def disk(radius: float, sides: int = 32) -> np.ndarray:
     return (radius / np.cos(np.pi / sides)) * np.column_stack([np.cos(a), np.sin(a)])
 
 
+def _hull_vertices(points: np.ndarray) -> np.ndarray:
+    """The convex hulls' vertices ``(k, h, 2)`` of ``k`` point sets ``(k, ..., 2)``, each
+    padded to the longest hull by repeating its first vertex (the hull is unchanged)."""
+    hulls = shapely.convex_hull(shapely.linestrings(points.reshape(len(points), -1, 2)))
+    coords, index = shapely.get_coordinates(hulls, return_index=True)
+    counts = np.bincount(index, minlength=len(points))
+    start = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    h = counts.max()
+    take = start[:, None] + np.minimum(np.arange(h)[None, :], counts[:, None] - 1)
+    take = np.where(np.arange(h)[None, :] < counts[:, None], take, start[:, None])
+    return coords[take]
+
+
 def minkowski_nfp(pieces_a: np.ndarray, rot_a: float, pieces_b: np.ndarray, rot_b: float,
                   clearance: float) -> Polygon:
     """No-fit polygon of part b (rotated ``rot_b``) around part a (rotated ``rot_a``, at the
@@ -139,11 +152,11 @@ def minkowski_nfp(pieces_a: np.ndarray, rot_a: float, pieces_b: np.ndarray, rot_
     """
     pa = pieces_a @ rotation_matrix(rot_a).T                    # (na, 4, 2)
     if clearance > 0:
-        pa = (pa[:, :, None, :] + disk(clearance)[None, None, :, :]).reshape(len(pa), -1, 2)
+        pa = _hull_vertices(pa[:, :, None, :] + disk(clearance)[None, None, :, :])
     pb = -(pieces_b @ rotation_matrix(rot_b).T)                 # (nb, 4, 2)
     sums = (pa[:, None, :, None, :] + pb[None, :, None, :, :]).reshape(
         len(pa) * len(pb), -1, 2)
-    hulls = shapely.convex_hull(shapely.multipoints(sums))
+    hulls = shapely.convex_hull(shapely.linestrings(sums))
     return shapely.union_all(hulls)
 
 
