@@ -1,5 +1,5 @@
-"""Planarity, lateral, surface-closeness and anchor terms of the strip polish: Jacobians
-against finite differences, fixed patterns, and what their residuals measure."""
+"""Planarity, lateral, slide-fairness, surface-closeness and anchor terms of the strip polish:
+Jacobians against finite differences, fixed patterns, and what their residuals measure."""
 
 import numpy as np
 import pytest
@@ -11,12 +11,13 @@ from dgpc_cli.core.constraints.planarity import (
     lateral,
     planarity,
     quad_samples,
+    slide_fairness,
     surface_closeness,
 )
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.strips.quality import bilinear_samples
 
-NAMES = ["planarity", "lateral", "surface_closeness", "anchor"]
+NAMES = ["planarity", "lateral", "surface_closeness", "anchor", "slide_fairness"]
 
 
 def _state(layout, rng):
@@ -38,7 +39,8 @@ def _terms(layout, rng):
             "lateral": lambda x: lateral(x, layout, points.reshape(-1, 3)[ids],
                                          t.reshape(-1, 3)[ids], ids),
             "surface_closeness": lambda x: surface_closeness(x, layout, frozen, samples),
-            "anchor": lambda x: anchor(x, layout, points)}
+            "anchor": lambda x: anchor(x, layout, points),
+            "slide_fairness": lambda x: slide_fairness(x, layout, points, t)}
 
 
 @pytest.mark.parametrize("name", NAMES)
@@ -106,3 +108,16 @@ def test_surface_closeness_is_the_signed_distance_to_the_surface():
     phi, _ = surface_closeness(layout.pack(grid), layout, plane, quad_samples(layout))
     assert np.isclose(phi.max(), 0.4) and np.isclose(np.sort(phi)[-2], 0.2)
     assert phi.min() == 0.0
+
+
+def test_slide_fairness_allows_a_common_shift_but_not_a_zigzag():
+    layout = QuadGridLayout(6, 2)
+    u, v = np.meshgrid(np.arange(6.0), np.array([0.0, 0.5]), indexing="ij")
+    start = np.stack([u, v, np.zeros_like(u)], axis=-1)
+    t = np.broadcast_to([1.0, 0.0, 0.0], start.shape)
+    shifted = start + [0.3, 0.0, 0.0]
+    assert np.abs(slide_fairness(layout.pack(shifted), layout, start, t)[0]).max() < 1e-14
+    zigzag = start.copy()
+    zigzag[1::2, :, 0] += 0.4                                  # every other ruling moved on
+    phi, _ = slide_fairness(layout.pack(zigzag), layout, start, t)
+    assert np.allclose(np.abs(phi), 0.8)

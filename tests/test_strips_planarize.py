@@ -215,14 +215,20 @@ def test_mirror_images_share_a_class_only_with_mirror_ok(tmp_path):
     assert counts[("--mirror-ok",)] == [1, 6]
 
 
-def test_flat_angle_marks_the_straight_part_of_a_profile_flat(tmp_path):
-    """A profile straight (a cylinder) below h = 2 and curved above: the strip normals do not
-    turn in the straight part, so its rows are flat and take the rulings of the nearest curved
-    rows; a huge --flat-angle makes every row flat (the v-edges stay the rulings)."""
+def _cylinder_then_curved(tmp_path):
+    """A profile straight (a cylinder) below h = 2 and curved above."""
     profile = tmp_path / "p.csv"
     h = np.linspace(0.0, 4.0, 81)
     r = np.where(h <= 2.0, 2.0, 2.0 + 0.25 * (h - 2.0) ** 2)
     profile.write_text("r,h\n" + "".join(f"{a:.12g},{b:.12g}\n" for a, b in zip(r, h, strict=True)))
+    return profile
+
+
+def test_flat_angle_marks_the_straight_part_of_a_profile_flat(tmp_path):
+    """A profile straight (a cylinder) below h = 2 and curved above: the strip normals do not
+    turn in the straight part, so its rows are flat and take the rulings of the nearest curved
+    rows; a huge --flat-angle makes every row flat (the v-edges stay the rulings)."""
+    profile = _cylinder_then_curved(tmp_path)
     dgpc("init", "--surface", "revolution", "--profile", profile, "--rows", 17, "--cols", 5,
          "--span", 60, "-o", tmp_path / "n")
     f = read_net(tmp_path / "n").f
@@ -244,6 +250,50 @@ def test_flat_angle_marks_the_straight_part_of_a_profile_flat(tmp_path):
         assert not r["polish"]["applied"]
         assert np.allclose(A, f[:, r["v"]], atol=1e-12, rtol=0)
         assert np.allclose(B, f[:, r["v"] + 1], atol=1e-12, rtol=0)
+
+
+def test_polish_keeps_the_rulings_in_order_where_the_surface_is_a_cylinder(tmp_path):
+    """Twisted u-lines over a cylinder-then-curved profile: the curved part needs the polish,
+    and on the cylinder part any parallel rulings give planar quads. The rulings must keep
+    their order along both geodesics (no zigzag turning quads into folded near-triangles), so
+    every developed outline is a simple polygon a cutter can follow."""
+    from shapely.geometry import Polygon
+
+    dgpc("init", "--surface", "revolution", "--profile", _cylinder_then_curved(tmp_path),
+         "--rows", 17, "--cols", 5, "--span", 60, "--twist", 0.3, "-o", tmp_path / "n")
+    dgpc("planarize-strips", tmp_path / "n", "-o", tmp_path / "s")
+    strips = read_strips(tmp_path / "s")
+    assert all(r["polish"]["applied"] and r["rulings_ordered"] for r in strips.records)
+    for (A, B), (P, Q) in zip(strips.geometry, _geodesics(tmp_path / "n", strips), strict=True):
+        for X, curve in ((A, P), (B, Q)):
+            # every step runs forward along the original geodesic
+            assert np.einsum("ij,ij->i", np.diff(X, axis=0), np.diff(curve, axis=0)).min() > 0
+    assert metrics(tmp_path / "s")["max_planarity"] <= 1e-9
+    assert metrics(tmp_path / "s")["max_deviation"] <= 3e-2
+    dgpc("unfold", tmp_path / "s", "-o", tmp_path / "f")
+    assert all(Polygon(p["outline"]).is_valid for p in read_flat(tmp_path / "f").parts)
+
+
+def _geodesics(net, strips):
+    f = read_net(net).f
+    return [(f[:, r["v"]], f[:, r["v"] + 1]) for r in strips.records]
+
+
+def test_folded_strips_exit_3_and_unfold_refuses_them(tmp_path, monkeypatch):
+    """Without the slide fairness the polish folds the twisted cylinder strips: planarize-strips
+    names them and exits 3 (written anyway); unfold refuses the strips with one line."""
+    import dgpc_cli.strips.polish as polish
+    from dgpc_cli.core.solver import Schedule
+
+    monkeypatch.setattr(polish, "SLIDE_WEIGHT", Schedule.constant(0.0))
+    dgpc("init", "--surface", "revolution", "--profile", _cylinder_then_curved(tmp_path),
+         "--rows", 17, "--cols", 5, "--span", 60, "--twist", 0.3, "-o", tmp_path / "n")
+    res = dgpc("planarize-strips", tmp_path / "n", "-o", tmp_path / "s", expect=3)
+    assert "cross" in res.stderr and "S-v00" in res.stderr
+    assert load_envelope(tmp_path / "s.json", "strips")["status"]["rulings_cross"]
+    res = dgpc("unfold", tmp_path / "s", "-o", tmp_path / "f", expect=1)
+    assert "crosses itself" in res.stderr and len(res.stderr.strip().splitlines()) == 1
+    assert not list(tmp_path.glob("f.*"))
 
 
 def test_polish_short_of_its_tolerance_exits_3_and_writes(tmp_path, monkeypatch):

@@ -57,6 +57,7 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, output, force, fmt)
     out_json, _ = artifact_paths(output)
     polished = [s for s in strips if s.polish.get("applied")]
     failed = [s.id for s in polished if s.polish.get("status") != "converged"]
+    crossed = [s.id for s in strips if not s.rulings_ordered]
     art = StripsArtifact(
         geometry=[(s.A, s.B) for s in strips], records=[s.record() for s in strips],
         source_shape=(m, n),
@@ -64,7 +65,8 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, output, force, fmt)
                     "polish_above": POLISH_ABOVE},
         inputs={"net": file_input(json_path, out_json.resolve().parent)},
         metrics=strips_metrics(strips),
-        status={"polished": len(polished), "polish_not_converged": failed})
+        status={"polished": len(polished), "polish_not_converged": failed,
+                "rulings_cross": crossed})
     write_files(with_3dm(strips_files(output, art), output, fmt), force=force)
     click.echo(str(out_json))
     log.info("%s: %d strips, max planarity %.3g, max deviation %.3g of the width", out_json,
@@ -73,3 +75,6 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, output, force, fmt)
         raise NotConverged(f"the polish of {', '.join(failed)} did not reach its tolerance "
                            f"(max planarity {art.metrics['max_planarity']:.3g}); written anyway",
                            source=out_json)
+    if crossed:
+        raise NotConverged(f"the rulings of {', '.join(crossed)} cross (folded quads, the "
+                           "strip cannot be unfolded); written anyway", source=out_json)

@@ -42,7 +42,7 @@ def unfold(stem, mirror_ok, congruence_tol, output, force, fmt):
     strips = read_strips(stem)
     parts, classes, metrics = unfold_strips(
         strips.geometry, [r["id"] for r in strips.records], [r["v"] for r in strips.records],
-        congruence_tol=congruence_tol, mirror_ok=mirror_ok)
+        congruence_tol=congruence_tol, mirror_ok=mirror_ok, source=json_path)
     out_json, _ = artifact_paths(output)
     art = FlatArtifact(
         parts=parts, classes=classes,

@@ -6,7 +6,9 @@ from __future__ import annotations
 import logging
 
 import numpy as np
+from shapely.geometry import Polygon
 
+from dgpc_cli.errors import DgpcError
 from dgpc_cli.strips.congruence import congruence_classes
 from dgpc_cli.strips.develop import develop_strip, signed_area
 
@@ -18,13 +20,20 @@ CONGRUENCE_TOL = 1e-3
 
 def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
                   congruence_tol: float = CONGRUENCE_TOL,
-                  mirror_ok: bool = False) -> tuple[list[dict], list[dict], dict]:
+                  mirror_ok: bool = False,
+                  source: str | None = None) -> tuple[list[dict], list[dict], dict]:
     """Develop every strip ``(A, B)`` of ``geometry`` and classify the developments.
 
     Returns the part records and class records of the flat artifact (see
-    :mod:`dgpc_cli.io.flat`) and its metrics.
+    :mod:`dgpc_cli.io.flat`) and its metrics. DgpcError (naming ``source``) when a developed
+    outline crosses itself: a cutter cannot cut it.
     """
     devs = [develop_strip(A, B) for A, B in geometry]
+    folded = [ids[i] for i, d in enumerate(devs) if not Polygon(d.outline).is_valid]
+    if folded:
+        raise DgpcError(f"the developed outline of {', '.join(folded)} crosses itself (its "
+                        "rulings cross; planarize-strips reports them in status.rulings_cross)",
+                        source=source)
     classes = congruence_classes([(d.A, d.B, d.length) for d in devs], congruence_tol,
                                  mirror_ok=mirror_ok)
     parts: list[dict] = [{} for _ in devs]

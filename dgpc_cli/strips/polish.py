@@ -8,7 +8,9 @@ trimmed them. Soft term: the point-to-plane distance of the quads' corners, edge
 centres from the original strip (its quads as bilinear patches). A planar-quad strip cannot
 follow a doubly curved strip exactly; the least-squares fit spreads the unavoidable sag to both
 sides of the surface instead of keeping the vertices on it and letting the quads' middles sag
-(about half the deviation of a strip whose vertices stay on the geodesics).
+(about half the deviation of a strip whose vertices stay on the geodesics). A small, constant
+slide fairness keeps the vertices' slides along the geodesics smooth, so the rulings never
+zigzag and cross.
 
 The closeness weight falls during the fit (like the paper's fairness weight), and a final
 projection onto the hard terms alone (the solver's regularization makes it the least change)
@@ -27,6 +29,7 @@ from dgpc_cli.core.constraints.planarity import (
     lateral,
     planarity,
     quad_samples,
+    slide_fairness,
     surface_closeness,
 )
 from dgpc_cli.core.reference import ReferenceSurface
@@ -39,6 +42,12 @@ CLOSENESS_WEIGHT = Schedule(1.0, 1e-2, 30)
 #: Weight schedule of the anchor to the start positions: it keeps the first steps from sliding
 #: vertices past each other along their geodesics, then fades out.
 ANCHOR_WEIGHT = Schedule(0.01, 0.0, 20)
+#: Weight of the slide fairness (second differences of the vertices' slides along their
+#: geodesics), kept to the end: the rulings may shift together but not zigzag. Without it the
+#: fit folds the strip where the surface gives no preference (a strip on a cylinder is planar
+#: between any two parallel rulings): alternate vertices slide past each other, turning quads
+#: into near-triangles (planar, and hugging the surface) whose rulings cross.
+SLIDE_WEIGHT = Schedule.constant(1e-2)
 #: Tolerance on the hard residual at mean edge length 1.
 POLISH_TOL = 1e-12
 #: Iteration limits of the fit and of the final projection.
@@ -60,7 +69,8 @@ class PolishResult:
 
 def _side_constraints(start: np.ndarray, tangents: np.ndarray, reference: ReferenceSurface):
     """Start points, directions and vertex ids of the lateral term: every vertex across its
-    geodesic (b = N × t), and the vertices of the two end rows also along it (t)."""
+    geodesic (b = N × t), and the vertices of the two end rows also along it (t); and the unit
+    tangents ``t (2m, 3)`` of all vertices."""
     m = start.shape[0]
     c = start.reshape(-1, 3)
     t = unit(np.asarray(tangents, dtype=float).reshape(-1, 3))
@@ -68,7 +78,7 @@ def _side_constraints(start: np.ndarray, tangents: np.ndarray, reference: Refere
     b = unit(np.cross(N, t))
     ends = np.r_[0, 1, 2 * m - 2, 2 * m - 1]
     ids = np.r_[np.arange(2 * m), ends]
-    return c[ids], np.concatenate([b, t[ends]]), ids
+    return c[ids], np.concatenate([b, t[ends]]), ids, t
 
 
 def polish_strip(A: np.ndarray, B: np.ndarray, P: np.ndarray, Q: np.ndarray,
@@ -90,7 +100,7 @@ def polish_strip(A: np.ndarray, B: np.ndarray, P: np.ndarray, Q: np.ndarray,
     start = (grid - center) * scale
     V, F = patch_mesh(P, Q)
     reference = ReferenceSurface((V - center) * scale, F)
-    points, directions, ids = _side_constraints(start, tangents, reference)
+    points, directions, ids, t = _side_constraints(start, tangents, reference)
     samples = quad_samples(layout)
     hard = [Term("planarity", lambda x: planarity(x, layout), Schedule.constant(1.0), True),
             Term("lateral", lambda x: lateral(x, layout, points, directions, ids),
@@ -98,7 +108,9 @@ def polish_strip(A: np.ndarray, B: np.ndarray, P: np.ndarray, Q: np.ndarray,
     fit = hard + [
         Term("closeness", lambda x: surface_closeness(x, layout, reference, samples),
              closeness_weight, False),
-        Term("anchor", lambda x: anchor(x, layout, start), ANCHOR_WEIGHT, False)]
+        Term("anchor", lambda x: anchor(x, layout, start), ANCHOR_WEIGHT, False),
+        Term("slide_fairness", lambda x: slide_fairness(x, layout, start, t),
+             SLIDE_WEIGHT, False)]
     fitted = guided_projection(layout.pack(start), fit, tol=tol, max_iter=max_iter)
     result = guided_projection(fitted.x, hard, tol=tol, max_iter=PROJECTION_MAX_ITER)
     out = layout.vertices(result.x) / scale + center

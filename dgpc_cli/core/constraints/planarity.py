@@ -10,6 +10,7 @@ constraint stays at most quadratic (Tang et al. 2014, as in paper §5.1):
 * lateral: ``⟨b, p − c⟩ = 0`` with c the vertex's start point on its boundary geodesic and b the
   unit surface direction across the geodesic there: the vertex keeps the strip's width but may
   slide along the geodesic and leave the surface along its normal;
+* slide fairness: second differences of the vertices' slides along their curves (no zigzag);
 * surface closeness: ``⟨n_k, s_k − π(s_k)⟩`` for sample points ``s_k`` (fixed affine combinations
   of the vertices: corners, edge midpoints, centres of the quads) against their closest points
   π(s_k) on the original strip, whose normal there is n_k (the point-to-plane distance of §5.1).
@@ -121,6 +122,24 @@ def lateral(x, layout: QuadGridLayout, points, directions, vertex_ids=None):
     phi = np.einsum("kj,kj->k", p[ids] - np.asarray(points, dtype=float).reshape(-1, 3), d)
     rows = np.arange(phi.size)[:, None]
     return phi, jacobian(phi.size, layout.size, (rows, layout.f_cols(ids), d))
+
+
+def slide_fairness(x, layout: QuadGridLayout, points, tangents):
+    """Residuals ``s_(u−1) − 2 s_u + s_(u+1)`` (1 per inner vertex of every grid column) of the
+    slides ``s = ⟨t, p − c⟩`` of the vertices along their curves, from the start points
+    ``points (m, k, 3)`` along the unit ``tangents (m, k, 3)``: the rulings may shift along the
+    strip together but not zigzag (a zigzag turns quads into near-triangles, which are planar
+    and hug the surface, and folds the strip). Linear in x."""
+    p, _ = layout.split(x)
+    c = np.asarray(points, dtype=float).reshape(layout.m, layout.k, 3)
+    t = np.asarray(tangents, dtype=float).reshape(layout.m, layout.k, 3)
+    slide = np.einsum("ukj,ukj->uk", p[layout.vid] - c, t)
+    phi = (slide[:-2] - 2.0 * slide[1:-1] + slide[2:]).ravel()
+    rows = np.arange(phi.size)[:, None]
+    blocks = [(rows, layout.f_cols(layout.vid[a:layout.m - 2 + a].ravel()),
+               w * t[a:layout.m - 2 + a].reshape(-1, 3))
+              for a, w in ((0, 1.0), (1, -2.0), (2, 1.0))]
+    return phi, jacobian(phi.size, layout.size, *blocks)
 
 
 def quad_samples(layout: QuadGridLayout) -> tuple[np.ndarray, np.ndarray]:
