@@ -5,7 +5,7 @@ direction exit 1 with one line, writing nothing."""
 import numpy as np
 import pytest
 import trimesh
-from cli_helpers import dgpc
+from cli_helpers import dgpc, metrics
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.mesh import load_mesh, write_mesh_obj
@@ -59,6 +59,12 @@ def test_several_pieces_rejected_unless_largest_component(tmp_path):
     dgpc("init", path, "--method", "geodesic", "--largest-component", "-o", tmp_path / "out")
     f = read_net(tmp_path / "out").f
     assert f[..., 0].max() <= 10.0 + 1e-9
+    # optimize keeps to the piece the net was made on (the reference it records is the file)
+    dgpc("optimize", tmp_path / "out", "--mode", "fit", "-o", tmp_path / "fit")
+    fitted = read_net(tmp_path / "fit")
+    assert fitted.parameters["largest_component"] is True
+    diagonal = metrics(tmp_path / "fit")["hausdorff"]["diagonal"]
+    assert diagonal == pytest.approx(np.linalg.norm(np.ptp(big.vertices, axis=0)), rel=1e-9)
 
 
 def test_hole_in_the_middle_is_avoided(tmp_path):

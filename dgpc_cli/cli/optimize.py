@@ -27,7 +27,8 @@ log = logging.getLogger(__name__)
 
 
 def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: str):
-    """The reference mesh: --reference, else the one the net records (fit needs one)."""
+    """The reference mesh: --reference, else the one the net records (fit needs one); only its
+    largest piece when the net was made with ``init --largest-component``."""
     if reference is None and mode == "fit" and net.data.get("reference"):
         reference = resolve_input(net.data["reference"], json_path)
         log.info("using the reference recorded in %s: %s", json_path, reference)
@@ -36,7 +37,11 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
             raise DgpcError("--mode fit needs a reference mesh (--reference MESH)",
                             source="--reference")
         return None
-    return load_mesh(reference)
+    return load_mesh(reference, pieces="largest" if _largest(net) else "all")
+
+
+def _largest(net: NetArtifact) -> bool:
+    return bool(net.parameters.get("largest_component"))
 
 
 @click.command(short_help="Optimize a net (fit, developable, revolution, isometric).")
@@ -120,7 +125,8 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
     result = NetArtifact(
         f=outcome.f,
         parameters={"mode": mode, "weights": describe_weights(schedules), "steps": steps,
-                    "max_iter": max_iter, "tol": tol, "solver": backend},
+                    "max_iter": max_iter, "tol": tol, "solver": backend,
+                    **({"largest_component": True} if _largest(net) else {})},
         inputs=inputs, data=data, status=outcome.record())
     result.metrics = summarize(result, mesh=mesh,
                                against=net if mode == "isometric" else None)

@@ -28,7 +28,8 @@ def recorded_axis(net: NetArtifact):
 
 
 def recorded_reference(net: NetArtifact, json_path: Path):
-    """The reference mesh recorded in ``data.reference``, if the file is there unchanged."""
+    """The reference mesh recorded in ``data.reference``, if the file is there unchanged (only
+    its largest piece when the net says ``largest_component``)."""
     from dgpc_cli.io.mesh import load_mesh
 
     record = net.data.get("reference")
@@ -42,7 +43,8 @@ def recorded_reference(net: NetArtifact, json_path: Path):
     if record.get("sha256") and sha256_file(path) != record["sha256"]:
         raise DgpcError(f"data.reference: {record['path']} changed since the net was written "
                         "(sha256 differs)", source=json_path)
-    return load_mesh(path)
+    return load_mesh(path, pieces="largest" if net.parameters.get("largest_component")
+                     else "all")
 
 
 def recorded_weights(net: NetArtifact) -> dict:
