@@ -4,6 +4,8 @@
 GEHRY_M   := $(call rows_or,21)
 GEHRY_N   := $(call cols_or,13)
 GEHRY     := $(OUT)/gehry-facade
+# The facade is 5 m tall (net units: m); its panels are cut from 6 m × 1.25 m metal sheets.
+GEHRY_SHEET := 6000x1250
 GEHRY_DEF := $(foreach k,1 2 3 4,$(GEHRY)/facade-$(k).json)
 
 $(GEHRY)/base.json: samples/profiles/gehry.csv
@@ -25,8 +27,8 @@ $(GEHRY)/flat.json: $(GEHRY)/strips.json
 	$(DGPC) unfold $(basename $<) -o $(basename $@) --force
 
 $(GEHRY)/sheets.json: $(GEHRY)/flat.json $(GEHRY)/mold.json
-	$(DGPC) nest $(basename $<) --mold $(basename $(word 2,$^)) --sheet 2500x1250 --scale 100 \
-	    -o $(basename $@) --force
+	$(DGPC) nest $(basename $<) --mold $(basename $(word 2,$^)) --units m \
+	    --sheet $(GEHRY_SHEET) -o $(basename $@) --force
 
 .PHONY: pipeline-gehry-facade
 pipeline-gehry-facade: setup $(GEHRY)/sheets.json ## Gehry facade: 4 deformations, 1 mold (Fig. 1, 16, 17).

@@ -4,6 +4,8 @@
 WALL_M := $(call rows_or,21)
 WALL_N := $(call cols_or,13)
 WALL   := $(OUT)/timber-cladding
+# The wall is 6 m tall (net units: m); its boards are cut from 6.1 m × 2.5 m LVL panels.
+WALL_SHEET := 6100x2500
 
 $(WALL)/base.json: samples/profiles/wall.csv
 	@mkdir -p $(@D)
@@ -21,7 +23,7 @@ $(WALL)/flat.json: $(WALL)/strips.json
 	$(DGPC) unfold $(basename $<) -o $(basename $@) --force
 
 $(WALL)/sheets.json: $(WALL)/flat.json
-	$(DGPC) nest $(basename $<) --sheet 2500x1250 --scale 100 -o $(basename $@) --force
+	$(DGPC) nest $(basename $<) --units m --sheet $(WALL_SHEET) -o $(basename $@) --force
 
 .PHONY: pipeline-timber-cladding
 pipeline-timber-cladding: setup $(WALL)/sheets.json ## Timber cladding: congruent strips, DXF cut sheets (Fig. 2, 18).
