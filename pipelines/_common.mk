@@ -6,6 +6,10 @@ DGPC ?= $(BIN)/dgpc -q
 PIPELINES := gehry-facade timber-cladding felt-developable bowling-pin-clairaut gridshell
 # $(call size,DEFAULT_ROWS,DEFAULT_COLS) -> ROWSxCOLS, ROWS/COLS overriding the defaults
 rows_or = $(if $(ROWS),$(ROWS),$(1))
+# Figures of an artifact: DIR/STEM-report-index.html (+ PNGs) from DIR/STEM.json.
+%-report-index.html: %.json
+	$(DGPC) report $(basename $<) -o $*-report --force >/dev/null
+
 cols_or = $(if $(COLS),$(COLS),$(1))
 
 # Handle files of a net size that is not committed: made by the sample generator.

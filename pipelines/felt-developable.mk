@@ -19,5 +19,7 @@ $(FELT)/flat.json: $(FELT)/strips.json
 	$(DGPC) unfold $(basename $<) -o $(basename $@) --force
 
 .PHONY: pipeline-felt-developable
-pipeline-felt-developable: setup $(FELT)/flat.json ## Felt: nearly developable fit, developed strips (Fig. 8, 12, 15).
-	@echo "felt-developable: $(FELT)/flat.json"
+pipeline-felt-developable: setup $(FELT)/felt-report-index.html \
+    $(FELT)/flat-report-index.html ## Felt: nearly developable fit, developed strips (Fig. 8, 12, 15).
+	@echo "felt-developable: $(FELT)/flat.json, figures $(FELT)/felt-report-index.html" \
+	    "$(FELT)/flat-report-index.html"

@@ -31,5 +31,7 @@ $(GEHRY)/sheets.json: $(GEHRY)/flat.json $(GEHRY)/mold.json
 	    --sheet $(GEHRY_SHEET) -o $(basename $@) --force
 
 .PHONY: pipeline-gehry-facade
-pipeline-gehry-facade: setup $(GEHRY)/sheets.json ## Gehry facade: 4 deformations, 1 mold (Fig. 1, 16, 17).
-	@echo "gehry-facade: $(GEHRY)/mold.json, $(GEHRY)/sheets.moldmap.dxf"
+pipeline-gehry-facade: setup $(GEHRY)/sheets.json $(GEHRY)/facade-1-report-index.html \
+    $(GEHRY)/mold-report-index.html ## Gehry facade: 4 deformations, 1 mold (Fig. 1, 16, 17).
+	@echo "gehry-facade: $(GEHRY)/mold.json, $(GEHRY)/sheets.moldmap.dxf, figures" \
+	    "$(GEHRY)/facade-1-report-index.html"

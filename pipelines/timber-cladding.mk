@@ -26,5 +26,6 @@ $(WALL)/sheets.json: $(WALL)/flat.json
 	$(DGPC) nest $(basename $<) --units m --sheet $(WALL_SHEET) -o $(basename $@) --force
 
 .PHONY: pipeline-timber-cladding
-pipeline-timber-cladding: setup $(WALL)/sheets.json ## Timber cladding: congruent strips, DXF cut sheets (Fig. 2, 18).
+pipeline-timber-cladding: setup $(WALL)/sheets.json $(WALL)/flat-report-index.html ## Timber cladding: congruent strips, DXF cut sheets (Fig. 2, 18).
+	@echo "timber-cladding: figures $(WALL)/flat-report-index.html"
 	@echo "timber-cladding: $$(ls $(WALL)/sheets.sheet*.dxf | tr '\n' ' ')"
