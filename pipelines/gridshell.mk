@@ -1,18 +1,20 @@
-# Geodesic gridshell (paper Fig. 14): two transversal geodesic nets on one reference, each
+# Geodesic gridshell (paper Fig. 14): two transversal geodesic nets on one reference, running
+# beyond it (--extend: a tenth of its diagonal) so that the laths cover all of it, each
 # fitted, then the laths of both families with their cut list.
-GRID_M := $(call rows_or,31)
-GRID_N := $(call cols_or,21)
+GRID_M := $(call rows_or,35)
+GRID_N := $(call cols_or,25)
+GRID_EXTEND := 0.1
 GRID   := $(OUT)/gridshell
 
 $(GRID)/a0.json: samples/meshes/gridshell.obj
 	@mkdir -p $(@D)
-	$(DGPC) init $< --method geodesic --direction 1,0,0 --rows $(GRID_M) --cols $(GRID_N) \
-	    -o $(basename $@) --force
+	$(DGPC) init $< --method geodesic --direction 1,0,0 --extend $(GRID_EXTEND) \
+	    --rows $(GRID_M) --cols $(GRID_N) -o $(basename $@) --force
 
 $(GRID)/b0.json: samples/meshes/gridshell.obj
 	@mkdir -p $(@D)
-	$(DGPC) init $< --method geodesic --direction 0,1,0 --rows $(GRID_M) --cols $(GRID_N) \
-	    -o $(basename $@) --force
+	$(DGPC) init $< --method geodesic --direction 0,1,0 --extend $(GRID_EXTEND) \
+	    --rows $(GRID_M) --cols $(GRID_N) -o $(basename $@) --force
 
 $(GRID)/%.json: $(GRID)/%0.json
 	$(DGPC) optimize $(basename $<) --mode fit -o $(basename $@) --force

@@ -32,16 +32,20 @@ def parse_direction(text: str | None):
     return d
 
 
-def _mesh_net(reference, method, direction, rows, cols, spacing, largest_component):
+def _mesh_net(reference, method, direction, rows, cols, spacing, largest_component, extend):
+    from dgpc_cli.geodesics.extension import continued
     from dgpc_cli.io.mesh import load_mesh
     from dgpc_cli.stages.init_mesh import init_geodesic, init_project
 
     mesh = load_mesh(reference, pieces="largest" if largest_component else "one")
+    domain = continued(mesh, extend)
     if method == "geodesic":
-        net = init_geodesic(mesh, direction=direction, rows=rows, cols=cols, spacing=spacing)
+        net = init_geodesic(domain, direction=direction, rows=rows, cols=cols, spacing=spacing)
     else:
-        net = init_project(mesh, direction=direction, rows=rows, cols=cols, spacing=spacing)
+        net = init_project(domain, direction=direction, rows=rows, cols=cols, spacing=spacing)
     net.parameters["largest_component"] = largest_component
+    if extend > 0:
+        net.parameters["extend"] = extend
     return net, mesh
 
 
@@ -71,6 +75,13 @@ def _mesh_net(reference, method, direction, rows, cols, spacing, largest_compone
 @click.option("--largest-component", is_flag=True,
               help="Keep the largest connected piece of REFERENCE instead of rejecting a mesh "
                    "of several pieces.")
+@click.option("--extend", type=click.FloatRange(min=0), default=0.0, show_default=True,
+              metavar="FRACTION",
+              help="With --method: let the net run beyond the mesh's outer boundary by up to "
+                   "FRACTION of its bounding-box diagonal (paper Fig. 14): the net is traced "
+                   "on the mesh continued in its boundary's tangent planes, and `optimize` "
+                   "fits it to that continuation (reaching twice as far, so the net's rim "
+                   "meets no boundary); the net records the mesh itself.")
 @click.option("--rows", "rows", type=click.IntRange(min=3),
               help="m: vertices along the geodesics (default with a mesh: square quads).")
 @click.option("--cols", "cols", type=click.IntRange(min=3),
@@ -89,13 +100,13 @@ def _mesh_net(reference, method, direction, rows, cols, spacing, largest_compone
 @output_opt
 @force_opt
 @format_opt
-def init(reference, surface, profile, method, direction, from_quads, largest_component, rows,
-         cols, spacing, span, twist, reference_out, output, force, fmt):
+def init(reference, surface, profile, method, direction, from_quads, largest_component, extend,
+         rows, cols, spacing, span, twist, reference_out, output, force, fmt):
     """Make an initial m×n net (u-lines: the geodesics).
 
     \b
     dgpc init --surface revolution --profile NAME|FILE --rows M --cols N -o STEM
-    dgpc init MESH --method geodesic [--direction x,y,z] [--rows M] [--cols N|--spacing S] -o S
+    dgpc init MESH --method geodesic [--direction x,y,z] [--extend F] [--rows M] [--cols N] -o S
     dgpc init MESH --method project --direction x,y,z [--rows M] [--cols N|--spacing S] -o S
     dgpc init --from-quads NET.obj [MESH] -o STEM
 
@@ -120,6 +131,8 @@ def init(reference, surface, profile, method, direction, from_quads, largest_com
             raise click.UsageError("give --cols or --spacing, not both")
         if method == "project" and direction is None:
             raise click.UsageError("--method project needs --direction x,y,z")
+    if extend > 0 and not method:
+        raise click.UsageError("--extend goes with REFERENCE and --method")
     if (profile or reference_out) and not surface:
         raise click.UsageError("--profile and --reference-out go with --surface")
     d = parse_direction(direction)
@@ -138,7 +151,8 @@ def init(reference, surface, profile, method, direction, from_quads, largest_com
             net.data["reference"] = relative_input(reference_out, folder, result.reference_obj)
             files[reference_out] = result.reference_obj
     elif method:
-        net, mesh = _mesh_net(reference, method, d, rows, cols, spacing, largest_component)
+        net, mesh = _mesh_net(reference, method, d, rows, cols, spacing, largest_component,
+                              extend)
     else:
         from dgpc_cli.stages.init_mesh import init_from_quads
 

@@ -12,6 +12,7 @@ from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.core.solver import Schedule
 from dgpc_cli.core.solver.linear import BACKENDS
 from dgpc_cli.errors import DgpcError, NotConverged
+from dgpc_cli.geodesics.extension import fit_surface
 from dgpc_cli.io.artifact import artifact_paths, file_input, resolve_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.handles import read_handles
@@ -42,6 +43,12 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
 
 def _largest(net: NetArtifact) -> bool:
     return bool(net.parameters.get("largest_component"))
+
+
+def _extends(net: NetArtifact) -> float:
+    """How far (fraction of the reference's diagonal) the net may run past its reference
+    (``init --extend``); 0 for a net kept on it."""
+    return float(net.parameters.get("extend", 0.0))
 
 
 @click.command(short_help="Optimize a net (fit, developable, revolution, isometric).")
@@ -99,10 +106,12 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
             bar.update(k + 1 - last[0])
             last[0] = k + 1
 
-        surface = ReferenceSurface.from_mesh(mesh) if mesh is not None else None
+        surface = (ReferenceSurface.from_mesh(fit_surface(mesh, _extends(net)))
+                   if mesh is not None else None)
+        # a net that runs past its reference (init --extend) has no rim on its boundary
         rim = (boundary_vertices(net.f, surface)
-               if surface is not None and schedules.get("boundary", Schedule.constant(0)).end > 0
-               else None)
+               if surface is not None and not _extends(net)
+               and schedules.get("boundary", Schedule.constant(0)).end > 0 else None)
         outcome = optimize_net(
             net.f, schedules, reference=surface, boundary_ids=rim,
             handle_ids=handle_ids, handle_targets=handle_targets, soft=SOFT[mode], steps=steps,
@@ -126,7 +135,8 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
         f=outcome.f,
         parameters={"mode": mode, "weights": describe_weights(schedules), "steps": steps,
                     "max_iter": max_iter, "tol": tol, "solver": backend,
-                    **({"largest_component": True} if _largest(net) else {})},
+                    **({"largest_component": True} if _largest(net) else {}),
+                    **({"extend": _extends(net)} if _extends(net) else {})},
         inputs=inputs, data=data, status=outcome.record())
     result.metrics = summarize(result, mesh=mesh,
                                against=net if mode == "isometric" else None)

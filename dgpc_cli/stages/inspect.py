@@ -59,13 +59,16 @@ def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact 
     """Residual norm per term and the paper's R of the net under its recorded weights.
 
     Data-bound terms count where their data is at hand: handles from ``data.handles``,
-    approximation from the reference, isometry from ``against``.
+    approximation from the reference (continued as far as the net's ``init --extend``),
+    isometry from ``against``.
     """
     from dgpc_cli.core.reference import ReferenceSurface
+    from dgpc_cli.geodesics.extension import fit_surface
 
     f = net.f
     m, n = net.shape
     weights = recorded_weights(net)
+    extend = float(net.parameters.get("extend", 0.0))
     handles = net.data.get("handles")
     rim = net.data.get("boundary")
     problem = Problem(
@@ -73,7 +76,8 @@ def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact 
         f0=against.f if against is not None else None,
         handle_ids=np.asarray(handles["ids"], dtype=np.int64) if handles else None,
         handle_targets=np.asarray(handles["targets"], dtype=float) if handles else None,
-        reference=ReferenceSurface.from_mesh(reference) if reference is not None else None,
+        reference=(ReferenceSurface.from_mesh(fit_surface(reference, extend))
+                   if reference is not None else None),
         boundary_ids=np.asarray(rim["ids"], dtype=np.int64) if rim else None,
     )
     norms = problem.residual_norms(f)
