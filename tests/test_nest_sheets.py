@@ -137,6 +137,20 @@ def test_mold_map(sample):
         assert piece["id"] in table
     assert all(p["id"] in table for p in mold["panels"])
     assert "flat panels" in table
+    # where the curved panels are pressed: one outline per band of mold rows, inside its piece
+    curved = [p for p in mold["panels"] if p["piece"] is not None]
+    bands = sorted({tuple(p["rows"]) for p in curved})
+    outlines = msp.query("LWPOLYLINE[layer=='PANELS']")
+    assert len(outlines) == len(bands) > 0
+    labels = [e.dxf.text for e in msp.query("TEXT[layer=='LABEL']")
+              if e.dxf.text.startswith("rows")]
+    counts = {rows: sum(tuple(p["rows"]) == rows for p in curved) for rows in bands}
+    assert labels == [f"rows {a}-{b}: {counts[(a, b)]} panels" for a, b in bands]
+    (sector,) = msp.query("LWPOLYLINE[layer=='SECTOR']")
+    xs = np.array(sector.get_points("xy"))[:, 0]
+    for outline in outlines:
+        pts = np.array(outline.get_points("xy"))
+        assert xs.min() - 1e-6 <= pts[:, 0].min() and pts[:, 0].max() <= xs.max() + 1e-6
 
 
 def test_deterministic_bytes(sample):

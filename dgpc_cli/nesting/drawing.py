@@ -23,7 +23,8 @@ from ..io.dxf import dxf_bytes, new_mm_document
 from .geometry import transform
 
 SHEET_LAYERS = {"SHEET": 8, "CUT": 1, "SCORE": 5, "LABEL": 3}
-MAP_LAYERS = {"PROFILE": 7, "AXIS": 1, "SECTOR": 8, "PIECES": 3, "LABEL": 2, "TABLE": 7}
+MAP_LAYERS = {"PROFILE": 7, "AXIS": 1, "SECTOR": 8, "PIECES": 3, "PANELS": 4, "LABEL": 2,
+              "TABLE": 7}
 
 
 def _xy(points: np.ndarray) -> list[tuple[float, float]]:
@@ -96,8 +97,11 @@ def mold_map_dxf(r_mm: np.ndarray, h_mm: np.ndarray, sector_deg: float,
 
     Left: the meridian profile (x = r, y = h) with the axis. Right: the developed sector — the
     meridian arc length s(u) upwards, the parallel arc r(u)·φ across, centred — with each mold
-    piece outlined and named. Below: a table, one line per mold piece listing its panels, then
-    the flat panels (no mold) separately.
+    piece outlined and named, and on it (layer PANELS) where the panels are pressed: one
+    outline per band of mold rows, as wide as its panels' angle (the mold is a surface of
+    revolution, so every panel of a band fits the same place), labelled with the rows and the
+    number of panels. Below: a table, one line per mold piece listing its panels, then the
+    flat panels (no mold) separately.
     """
     r_mm, h_mm = np.asarray(r_mm, float), np.asarray(h_mm, float)
     s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(r_mm), np.diff(h_mm)))])
@@ -132,6 +136,16 @@ def mold_map_dxf(r_mm: np.ndarray, h_mm: np.ndarray, sector_deg: float,
             mid = (a + b) // 2
             msp.add_text(piece["id"], height=text, dxfattribs={"layer": "LABEL"}).set_placement(
                 (x0, float(s[mid])), align=TextEntityAlignment.MIDDLE_CENTER)
+        for (a, b), width_deg, count in panel_bands(panels):
+            half_p = 0.5 * r_mm[a:b + 1] * np.radians(width_deg)
+            outline = np.concatenate([np.column_stack([x0 - half_p, s[a:b + 1]]),
+                                      np.column_stack([x0 + half_p, s[a:b + 1]])[::-1]])
+            msp.add_lwpolyline(_xy(outline), format="xy", close=True,
+                               dxfattribs={"layer": "PANELS"})
+            msp.add_text(f"rows {a}-{b}: {count} panels", height=0.5 * text,
+                         dxfattribs={"layer": "LABEL"}).set_placement(
+                (x0 + float(half.max()) + 0.02 * size, 0.5 * float(s[a] + s[b])),
+                align=TextEntityAlignment.MIDDLE_LEFT)
         y = float(min(h_mm.min(), 0.0)) - 0.2 * size
         for line in map_table(pieces, panels):
             msp.add_text(line, height=0.6 * text, dxfattribs={"layer": "TABLE"}
@@ -140,6 +154,17 @@ def mold_map_dxf(r_mm: np.ndarray, h_mm: np.ndarray, sector_deg: float,
         return doc
 
     return dxf_bytes(build)
+
+
+def panel_bands(panels: list[dict]) -> list[tuple[tuple[int, int], float, int]]:
+    """The bands of mold rows the curved panels are pressed on: ``((first, last) row, widest
+    panel angle in degrees, number of panels)``, by first row."""
+    bands: dict[tuple[int, int], list[float]] = {}
+    for p in panels:
+        if p["piece"] is not None:
+            a0, a1 = p["angle_deg"]
+            bands.setdefault(tuple(p["rows"]), []).append(abs(a1 - a0))
+    return [(rows, max(w), len(w)) for rows, w in sorted(bands.items())]
 
 
 def map_table(pieces: list[dict], panels: list[dict], per_line: int = 8) -> list[str]:
