@@ -8,13 +8,14 @@ import pytest
 import trimesh
 from cli_helpers import dgpc, metrics
 
-from dgpc_cli.geodesics.extension import boundary_edges, extend_mesh
+from dgpc_cli.geodesics.extension import boundary_edges, extend_mesh, folded_faces
+from dgpc_cli.io.mesh import write_mesh_obj
 from dgpc_cli.io.net import read_net
 
 GRIDSHELL = Path(__file__).resolve().parents[1] / "samples" / "meshes" / "gridshell.obj"
 
 
-def _square(k=10, size=10.0, hole=False):
+def _square(k=10, size=10.0, hole=False, slot=False):
     u, v = np.meshgrid(np.linspace(0, size, k + 1), np.linspace(0, size, k + 1), indexing="ij")
     V = np.stack([u.ravel(), v.ravel(), np.zeros(u.size)], 1)
     vid = np.arange((k + 1) ** 2).reshape(k + 1, k + 1)
@@ -22,6 +23,8 @@ def _square(k=10, size=10.0, hole=False):
     keep = np.ones((k, k), bool)
     if hole:
         keep[k // 2 - 1:k // 2 + 1, k // 2 - 1:k // 2 + 1] = False
+    if slot:                                    # a slot one cell wide from the edge inwards
+        keep[k // 2, :k // 2] = False
     F = np.concatenate([np.stack([a, b, c], -1)[keep], np.stack([a, c, d], -1)[keep]])
     return V, F
 
@@ -46,6 +49,25 @@ def test_extend_mesh_leaves_holes_alone():
     mesh = trimesh.Trimesh(V2, F2, process=False)
     assert mesh.area == pytest.approx(12.0 ** 2 - 4.0, rel=1e-12)
     assert len(boundary_edges(F2)[0]) == len(boundary_edges(F)[0])  # hole + outer, same counts
+
+
+def test_a_continuation_that_would_fold_is_refused(tmp_path):
+    """Rings grown into a slot one cell wide meet after half a cell and turn over: init names
+    --extend and the largest extension that does not fold; nothing is written."""
+    V, F = _square(slot=True)
+    assert folded_faces(*extend_mesh(V, F, 0.3), len(F)) == 0
+    assert folded_faces(*extend_mesh(V, F, 1.0), len(F)) > 0
+    path = tmp_path / "slot.obj"
+    path.write_bytes(write_mesh_obj(path, V, F))
+    r = dgpc("init", path, "--method", "geodesic", "--extend", 0.1, "-o", tmp_path / "n",
+             expect=1)
+    err = r.stderr.strip()
+    assert len(err.splitlines()) == 1 and "--extend" in err and "folds" in err
+    largest = float(err.rsplit("at most ", 1)[1].split()[0])
+    diagonal = np.linalg.norm(np.ptp(V, axis=0))
+    assert 0.3 / diagonal < largest < 0.6 / diagonal      # the slot closes at half its width
+    assert not list(tmp_path.glob("n.*"))
+    dgpc("init", path, "--method", "geodesic", "--extend", 0.02, "-o", tmp_path / "n")
 
 
 def test_extended_gridshell_net_covers_the_reference(tmp_path):

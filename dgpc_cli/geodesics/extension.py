@@ -18,6 +18,7 @@ import numpy as np
 from scipy.sparse import coo_array
 from scipy.sparse.csgraph import connected_components
 
+from dgpc_cli.errors import DgpcError
 from dgpc_cli.geodesics.tracing import face_normals
 from dgpc_cli.io.mesh import ReferenceMesh
 
@@ -50,6 +51,19 @@ def outer_loop(vertices: np.ndarray, edges: np.ndarray) -> np.ndarray:
     lengths = np.linalg.norm(vertices[edges[:, 1]] - vertices[edges[:, 0]], axis=1)
     per_loop = np.bincount(label[edges[:, 0]], weights=lengths)
     return label[edges[:, 0]] == np.argmax(per_loop)
+
+
+def folded_faces(vertices: np.ndarray, faces: np.ndarray, n_original: int) -> int:
+    """How many of the faces added by :func:`extend_mesh` (those after the first
+    ``n_original``) are turned over against the boundary face they grew from: at a concave
+    stretch of the boundary the rings run into each other and fold once they reach past the
+    stretch's radius."""
+    V, F = np.asarray(vertices, float), np.asarray(faces, np.int64)
+    normals, _ = face_normals(V, F)
+    edges, face_of = boundary_edges(F[:n_original])
+    edges, face_of = edges[outer_loop(V, edges)], face_of[outer_loop(V, edges)]
+    added = normals[n_original:].reshape(2, -1, len(edges), 3)       # (tri, ring, edge, 3)
+    return int((np.einsum("trsj,sj->trs", added, normals[face_of]) <= 0).sum())
 
 
 def extend_mesh(vertices: np.ndarray, faces: np.ndarray,
@@ -95,14 +109,40 @@ def continued(mesh: ReferenceMesh, fraction: float) -> ReferenceMesh:
     """``mesh`` continued beyond its outer boundary by ``fraction`` of its bounding-box
     diagonal (``init --extend``): what a net running past the reference is traced on and
     fitted to. Path and sha256 stay those of the file (the continuation is rebuilt from it,
-    deterministically); a fraction of 0 gives the mesh itself."""
+    deterministically); a fraction of 0 gives the mesh itself. DgpcError naming ``--extend``
+    when the continuation folds (see :func:`folded_faces`), with the largest fraction that
+    does not."""
     if fraction <= 0:
         return mesh
     V, F = extend_mesh(mesh.vertices, mesh.faces, fraction * mesh.bbox_diagonal)
+    folds = folded_faces(V, F, len(mesh.faces))
+    if folds:
+        raise DgpcError(
+            f"continuing {mesh.path.name} by {fraction:g} of its diagonal folds it at its "
+            f"concave boundary ({folds} triangles turned over); at most "
+            f"{largest_unfolded(mesh, fraction):.3g} does not", source="--extend")
     return dataclasses.replace(mesh, vertices=V, faces=F)
+
+
+def largest_unfolded(mesh: ReferenceMesh, fraction: float, steps: int = 12) -> float:
+    """The largest extension (fraction of the diagonal, below ``fraction``, by bisection)
+    whose continuation does not fold."""
+    lo, hi = 0.0, fraction
+    for _ in range(steps):
+        mid = 0.5 * (lo + hi)
+        V, F = extend_mesh(mesh.vertices, mesh.faces, mid * mesh.bbox_diagonal)
+        lo, hi = (mid, hi) if folded_faces(V, F, len(mesh.faces)) == 0 else (lo, mid)
+    return lo
 
 
 def fit_surface(mesh: ReferenceMesh, fraction: float) -> ReferenceMesh:
     """The surface ``optimize`` fits a net made with ``init --extend fraction`` to: the mesh
-    continued to :data:`FIT_REACH` × ``fraction`` (the mesh itself for 0)."""
-    return continued(mesh, FIT_REACH * fraction)
+    continued to :data:`FIT_REACH` × ``fraction``, or as far beyond ``fraction`` as it goes
+    without folding (the mesh itself for 0)."""
+    if fraction <= 0:
+        return mesh
+    reach = FIT_REACH * fraction
+    V, F = extend_mesh(mesh.vertices, mesh.faces, reach * mesh.bbox_diagonal)
+    if folded_faces(V, F, len(mesh.faces)):
+        reach = max(largest_unfolded(mesh, reach), fraction)
+    return continued(mesh, reach)
