@@ -23,5 +23,6 @@ $(GRID)/laths.json: $(GRID)/a.json $(GRID)/b.json
 	$(DGPC) laths $(basename $^) -o $(basename $@) --force
 
 .PHONY: pipeline-gridshell
-pipeline-gridshell: setup $(GRID)/laths.json $(GRID)/a-report-index.html ## Gridshell: two lath families and the cut list (Fig. 14).
-	@echo "gridshell: $(GRID)/laths.json, $(GRID)/laths.csv, figures $(GRID)/a-report-index.html"
+pipeline-gridshell: setup $(GRID)/laths-report-index.html $(GRID)/a-report-index.html ## Gridshell: two lath families and the cut list (Fig. 14).
+	@echo "gridshell: $(GRID)/laths.json, $(GRID)/laths.csv, figures" \
+	    "$(GRID)/laths-report-index.html $(GRID)/a-report-index.html"

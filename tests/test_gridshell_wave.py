@@ -84,3 +84,39 @@ def test_crossing_of_two_straight_laths():
     # a lath that ends on the other one does not cross it
     short = Lath("B02", "B", np.hstack([np.full_like(t, 2.5), t * 0.375, np.zeros_like(t)]))
     assert find_crossings([a], [short], gap=0.1).a.size == 0
+
+
+def test_laths_inspect_and_report(shell, tmp_path):
+    """`dgpc inspect` and `dgpc report` read the laths artifact (checked against its OBJ and
+    cut list): metrics as written, a PNG of the two families and the index."""
+    from cli_helpers import metrics
+
+    from dgpc_cli.io.laths import read_laths
+
+    art = read_laths(shell / "shell")
+    assert metrics(shell / "shell") == art.metrics
+    assert len(art.family("A")) == art.data["laths"]["A"] == 20
+    assert art.metrics["crossings"] == art.data["crossings"] > 0
+    out = dgpc("report", shell / "shell", "-o", tmp_path / "r").stdout.split()
+    assert out == [str(tmp_path / "r-laths.png"), str(tmp_path / "r-index.html")]
+    assert (tmp_path / "r-laths.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    html = (tmp_path / "r-index.html").read_text()
+    assert "r-laths.png" in html and "crossing_gap_max" in html
+
+
+def test_laths_with_an_edited_cut_list_are_refused(shell, tmp_path):
+    import shutil
+
+    for suffix in (".json", ".obj", ".csv"):
+        shutil.copy(shell / f"shell{suffix}", tmp_path / f"s{suffix}")
+    doc = json.loads((tmp_path / "s.json").read_text())
+    doc["data"]["cut_list"] = "s.csv"
+    doc["data"]["obj"] = "s.obj"
+    (tmp_path / "s.json").write_text(json.dumps(doc))
+    dgpc("inspect", tmp_path / "s")
+    (tmp_path / "s.csv").write_text((tmp_path / "s.csv").read_text().replace("A01", "A99"))
+    r = dgpc("inspect", tmp_path / "s", expect=1)
+    err = r.stderr.strip()
+    assert len(err.splitlines()) == 1 and "s.csv" in err and "sha256" in err
+    r = dgpc("report", tmp_path / "s", "-o", tmp_path / "r", expect=1)
+    assert not list(tmp_path.glob("r-*"))

@@ -71,6 +71,15 @@ def _inspect_sheets(json_path: Path, **_) -> dict:
 INSPECTORS.update(sheets=_inspect_sheets)
 
 
+def _inspect_laths(json_path: Path, **_) -> dict:
+    from dgpc_cli.io.laths import read_laths
+
+    return read_laths(json_path).metrics
+
+
+INSPECTORS.update(laths=_inspect_laths)
+
+
 def artifact_kind(json_path: Path) -> str:
     doc = read_json(json_path)
     kind = doc.get("kind") if isinstance(doc, dict) else None

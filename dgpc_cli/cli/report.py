@@ -30,6 +30,7 @@ def report(stem, output, force):
     strips  PREFIX-width.png (the planar-quad strips coloured by width)
     flat    PREFIX-overlay.png, PREFIX-strips.png (developed strips, Fig. 18)
     mold    PREFIX-profile.png (the meridian profile)
+    laths   PREFIX-laths.png (the two lath families of a gridshell, Fig. 14)
     sheets  the index links the sheet previews written by dgpc nest
 
     Prints the paths written, the index last.

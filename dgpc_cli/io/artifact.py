@@ -14,7 +14,7 @@ from .jsonable import load_schema, read_json, schema_exists, to_jsonable, valida
 
 SCHEMA_VERSION = 1
 SUPPORTED_VERSIONS = (1,)
-KINDS = ("net", "mold", "strips", "flat", "sheets")
+KINDS = ("net", "mold", "strips", "flat", "sheets", "laths")
 ENVELOPE_KEYS = ("kind", "schema_version", "created_by", "inputs", "parameters", "data",
                  "metrics", "status")
 

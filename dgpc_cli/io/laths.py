@@ -4,13 +4,22 @@ per lath, ``STEM.csv`` the cut list, ``STEM.json`` the envelope listing both fil
 from __future__ import annotations
 
 import json
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from .. import __version__
 from ..errors import DgpcError
-from .artifact import artifact_paths, dumps_json, make_envelope, sha256_bytes, validate_envelope
+from .artifact import (
+    artifact_paths,
+    dumps_json,
+    load_envelope,
+    make_envelope,
+    read_listed,
+    sha256_bytes,
+    validate_envelope,
+)
 
 KIND = "laths"
 CSV_HEADER = ("lath_id", "family", "length", "n_crossings", "crossings", "crossing_laths")
@@ -73,22 +82,35 @@ def laths_files(stem: str | Path, laths, crossings, *, inputs: dict, parameters:
 def read_cut_list(path: str | Path) -> list[dict]:
     """Rows of a cut list CSV: ``lath_id``, ``family``, ``length`` (float), ``crossings``
     (list of floats), ``crossing_laths`` (list of ids)."""
-    text = Path(path).read_text(encoding="ascii").splitlines()
-    if not text or tuple(text[0].split(",")) != CSV_HEADER:
-        raise DgpcError("not a dgpc cut list (header)", source=path)
+    return parse_cut_list(Path(path).read_text(encoding="ascii"), path)
+
+
+def parse_cut_list(text: str, source) -> list[dict]:
+    """:func:`read_cut_list` on the CSV's text; DgpcError naming ``source`` when malformed."""
+    lines = text.splitlines()
+    if not lines or tuple(lines[0].split(",")) != CSV_HEADER:
+        raise DgpcError("not a dgpc cut list (header)", source=source)
     rows = []
-    for line in text[1:]:
-        lid, fam, length, _, xs, ids = line.split(",")
-        rows.append({"lath_id": lid, "family": fam, "length": float(length),
-                     "crossings": [float(x) for x in xs.split(";") if x],
-                     "crossing_laths": [i for i in ids.split(";") if i]})
+    for k, line in enumerate(lines[1:], start=2):
+        try:
+            lid, fam, length, _, xs, ids = line.split(",")
+            rows.append({"lath_id": lid, "family": fam, "length": float(length),
+                         "crossings": [float(x) for x in xs.split(";") if x],
+                         "crossing_laths": [i for i in ids.split(";") if i]})
+        except ValueError:
+            raise DgpcError(f"line {k} is not a cut-list row", source=source) from None
     return rows
 
 
 def read_polylines(path: str | Path) -> dict[str, np.ndarray]:
     """The polylines of a laths OBJ by object name, ``(k, 3)`` each."""
+    return parse_polylines(Path(path).read_text(encoding="ascii"))
+
+
+def parse_polylines(text: str) -> dict[str, np.ndarray]:
+    """:func:`read_polylines` on the OBJ's text."""
     verts, out, name = [], {}, None
-    for raw in Path(path).read_text(encoding="ascii").splitlines():
+    for raw in text.splitlines():
         parts = raw.split()
         if not parts:
             continue
@@ -99,3 +121,39 @@ def read_polylines(path: str | Path) -> dict[str, np.ndarray]:
         elif parts[0] == "l":
             out[name] = np.asarray(verts, float)[[int(i) - 1 for i in parts[1:]]]
     return out
+
+
+@dataclass
+class LathsArtifact:
+    """The laths of a gridshell: ``polylines`` by lath id (``(k, 3)`` each, family A then B),
+    the cut-list ``rows`` (see :func:`read_cut_list`) and the envelope fields."""
+
+    polylines: dict
+    rows: list
+    data: dict = field(default_factory=dict)
+    inputs: dict = field(default_factory=dict)
+    metrics: dict = field(default_factory=dict)
+    status: dict = field(default_factory=dict)
+
+    def family(self, name: str) -> list[np.ndarray]:
+        """The polylines of family ``name`` ("A" or "B") in cut-list order."""
+        return [self.polylines[r["lath_id"]] for r in self.rows if r["family"] == name]
+
+
+def read_laths(stem: str | Path) -> LathsArtifact:
+    """Read and validate a laths artifact: envelope, schema, the OBJ's and the cut list's
+    hashes, and that both list the same laths in the counts the JSON records."""
+    json_path, obj_path = artifact_paths(stem)
+    doc = load_envelope(json_path, KIND)
+    data = doc["data"]
+    obj = read_listed(obj_path, data["obj_sha256"], json_path, "data.obj_sha256")
+    csv_path = json_path.parent / data["cut_list"]
+    csv = read_listed(csv_path, data["cut_list_sha256"], json_path, "data.cut_list_sha256")
+    polylines = parse_polylines(obj.decode("ascii"))
+    rows = parse_cut_list(csv.decode("ascii"), csv_path)
+    counts = {f: sum(r["family"] == f for r in rows) for f in ("A", "B")}
+    if [r["lath_id"] for r in rows] != list(polylines) or counts != data["laths"]:
+        raise DgpcError(f"the cut list, the OBJ and data.laths {data['laths']} do not list the "
+                        "same laths", source=json_path)
+    return LathsArtifact(polylines=polylines, rows=rows, data=data, inputs=doc["inputs"],
+                         metrics=doc["metrics"], status=doc["status"])

@@ -1,4 +1,5 @@
-"""Figures of nets and molds: quads coloured by a field, the Clairaut plot, the mold profile.
+"""Figures of nets and molds: quads coloured by a field, the Clairaut plot, the mold profile,
+and the laths of a gridshell.
 
 Nets are drawn in 3-D (``mpl_toolkits.mplot3d``) from one fixed view (elevation
 :data:`ELEVATION`, azimuth :data:`AZIMUTH`, equal axis scales, axes hidden), every quad filled
@@ -110,6 +111,26 @@ def grids_png(grids: list[np.ndarray], values: list[np.ndarray], *, title: str, 
     bar = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=ax, shrink=0.7, pad=0.02)
     bar.set_label(label, fontsize=8)
     bar.ax.tick_params(labelsize=7)
+    return png_bytes(fig)
+
+
+def polylines_png(families: list[list[np.ndarray]], names: list[str], *, title: str) -> bytes:
+    """PNG of 3-D polylines (``(k, 3)`` each) in the fixed view of the net figures, one colour
+    per family, with a legend of ``names`` (the two lath families of a gridshell, Fig. 14)."""
+    fig = figure(6.4, 5.2)
+    ax = fig.add_subplot(1, 1, 1, projection="3d")
+    colours = ["tab:blue", "tab:red", "tab:green", "tab:orange"]
+    for k, (lines, name) in enumerate(zip(families, names, strict=True)):
+        for i, line in enumerate(lines):
+            p = np.asarray(line, float)
+            ax.plot(p[:, 0], p[:, 1], p[:, 2], color=colours[k % len(colours)], lw=0.8,
+                    label=name if i == 0 else None)
+    _equal_limits(ax, np.concatenate([np.asarray(p, float) for lines in families
+                                      for p in lines]))
+    ax.view_init(elev=ELEVATION, azim=AZIMUTH)
+    ax.set_axis_off()
+    ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=8, loc="upper right")
     return png_bytes(fig)
 
 

@@ -16,6 +16,7 @@ Files written for ``-o PREFIX`` (each kind also gets ``PREFIX-index.html``):
     bottom-left);
 
 * mold: ``PREFIX-profile.png``, the meridian profile;
+* laths: ``PREFIX-laths.png``, the two lath families of a gridshell in 3-D (Fig. 14);
 * sheets: no new figure; the index links the sheet previews that ``nest`` wrote.
 
 Rendered with matplotlib's Agg backend, without metadata that would change between runs.
@@ -207,8 +208,22 @@ def _sheets_links(json_path: Path, html_path: Path) -> tuple[list, dict, dict]:
     return links, art.metrics, art.status
 
 
+def _laths_figures(json_path: Path) -> tuple[list, dict, dict]:
+    from dgpc_cli.io.laths import read_laths
+    from dgpc_cli.report.net import polylines_png
+
+    art = read_laths(json_path)
+    a, b = art.family("A"), art.family("B")
+    title = f"{len(a)} + {len(b)} laths, {art.data['crossings']} crossings"
+    figs = [("laths", "The two lath families (the u-line geodesics of the two nets, paper "
+                      "Fig. 14); the cut list is beside the artifact.",
+             polylines_png([a, b], [f"family A ({len(a)})", f"family B ({len(b)})"],
+                           title=title))]
+    return figs, art.metrics, art.status
+
+
 FIGURES = {"net": _net_figures, "strips": _strips_figures, "flat": _flat_figures,
-           "mold": _mold_figures}
+           "mold": _mold_figures, "laths": _laths_figures}
 
 
 def _prefix_text(prefix: Path) -> str:
