@@ -13,7 +13,7 @@ from shapely.geometry import Point, Polygon, box
 from dgpc_cli.io.flat import read_flat
 from dgpc_cli.io.net import NetArtifact, read_net, write_net
 from dgpc_cli.io.sheets import read_sheets
-from dgpc_cli.nesting.geometry import CLEARANCE_MM, prepare_parts
+from dgpc_cli.nesting.geometry import CLEARANCE_MM, prepare_parts, transform
 from dgpc_cli.nesting.strip import strip_density
 from dgpc_cli.surfaces.minding import minding_bend
 
@@ -245,3 +245,30 @@ def test_dxf_bytes_do_not_depend_on_the_process(sample, tmp_path):
         outs.append(read_sheets(tmp_path / seed))
     for key in ("sheet01_dxf", "moldmap_dxf"):
         assert outs[0].file(key).read_bytes() == outs[1].file(key).read_bytes(), key
+
+
+def test_near_congruent_parts_share_no_fit_polygons_and_keep_the_spacing(sample, tmp_path):
+    """Parts within a quarter of the spacing of each other share a group (one set of no-fit
+    polygons), the difference added to their clearance: the layout still keeps the spacing
+    between the real outlines (nest's own check and shapely here)."""
+    _, flat, _ = sample
+    parts = read_flat(flat).parts
+    rng = np.random.default_rng(1)
+    for p in parts[1:]:                       # perturb every part but the first by ≤ 0.5 mm
+        noise = 0.5 / SCALE * rng.uniform(-1, 1, np.shape(p["outline"])) / np.sqrt(2)
+        p["outline"] = (np.asarray(p["outline"]) + noise).tolist()
+    apart = prepare_parts(parts, SCALE)
+    shared = prepare_parts(parts, SCALE, 0.25 * SPACING)
+    assert len({p.group for p in apart}) == len(parts)
+    assert len({p.group for p in shared}) == 1
+    assert 0 < max(p.deviation for p in shared) <= 0.25 * SPACING
+    from dgpc_cli.nesting.blf import Sheet
+    from dgpc_cli.stages.nest import nest_parts
+
+    result = nest_parts(parts, Sheet(*SHEET, MARGIN, SPACING), [0.0, 180.0], scale=SCALE)
+    placed = [Polygon(transform(result.parts[q.index].outline, q.rotation, q.translation))
+              for q in result.placements]
+    sheets = [q.sheet for q in result.placements]
+    gaps = [placed[i].distance(placed[j]) for i in range(len(placed))
+            for j in range(i + 1, len(placed)) if sheets[i] == sheets[j]]
+    assert SPACING - 1e-6 <= min(gaps) <= SPACING + 2 * 0.25 * SPACING

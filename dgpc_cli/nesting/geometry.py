@@ -26,6 +26,15 @@ CLEARANCE_MM = 1e-4
 #: Parts whose outlines (in their own coordinates, same vertex count) differ by at most this
 #: (mm) share their no-fit polygons; the difference is added to the spacing.
 GROUP_TOL_MM = 1e-3
+#: ... or by at most this fraction of the spacing: congruent strips of a large part differ by
+#: a few tenths of a mm after unfolding; sharing their no-fit polygons (and pairing them) costs
+#: at most that much extra gap and saves a no-fit polygon per pair of parts.
+GROUP_SPACING_FRACTION = 0.25
+
+
+def group_tolerance(spacing: float) -> float:
+    """How far (mm) two parts' outlines may differ to share no-fit polygons."""
+    return max(GROUP_TOL_MM, GROUP_SPACING_FRACTION * spacing)
 
 
 def rotation_matrix(deg: float) -> np.ndarray:
@@ -93,8 +102,9 @@ def convex_pieces(outline: np.ndarray, geodesics=None) -> np.ndarray:
     return coords[:, [0, 1, 2, 2]]
 
 
-def prepare_parts(flat_parts: list[dict], k: float) -> list[Part]:
-    """The flat artifact's part records scaled by ``k`` (mm per model unit), grouped."""
+def prepare_parts(flat_parts: list[dict], k: float, tol: float = GROUP_TOL_MM) -> list[Part]:
+    """The flat artifact's part records scaled by ``k`` (mm per model unit), grouped: a part
+    joins the first group whose leader's outline is within ``tol`` (mm) of its own."""
     parts = []
     for rec in flat_parts:
         outline = k * np.asarray(rec["outline"], float)
@@ -112,7 +122,7 @@ def prepare_parts(flat_parts: list[dict], k: float) -> list[Part]:
             q = parts[j].outline
             if q.shape == p.outline.shape:
                 dev = float(np.max(np.linalg.norm(q - p.outline, axis=1)))
-                if dev <= GROUP_TOL_MM:
+                if dev <= tol:
                     p.group, p.deviation = g, dev
                     break
         else:

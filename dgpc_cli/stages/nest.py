@@ -27,7 +27,7 @@ from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.dxf import UNIT_MM
 from dgpc_cli.nesting.blf import Placement, Sheet, fill_sheets, inner_fit
 from dgpc_cli.nesting.drawing import mold_map_dxf, placed_part, previews, sheet_dxf
-from dgpc_cli.nesting.geometry import Part, bounds, prepare_parts, transform
+from dgpc_cli.nesting.geometry import Part, bounds, group_tolerance, prepare_parts, transform
 from dgpc_cli.nesting.strip import spyrrow_sheets
 
 log = logging.getLogger(__name__)
@@ -131,7 +131,7 @@ def nest_parts(flat_parts: list[dict], sheet: Sheet, rotations: list[float], *,
     if engine not in ENGINES:
         raise DgpcError(f"{engine!r}: not one of {', '.join(ENGINES)}", source="--engine")
     k = scale * UNIT_MM[units]
-    parts = prepare_parts(flat_parts, k)
+    parts = prepare_parts(flat_parts, k, group_tolerance(sheet.spacing))
     check_fit(parts, sheet, rotations)
     if engine == "fill":
         placements, info = fill_sheets(parts, sheet, rotations, progress)
