@@ -13,7 +13,8 @@ Run from the repository root: ``.venv/bin/python samples/generate.py``. It write
 - ``meshes/gridshell.obj``: a doubly curved height-field patch for the gridshell (Fig. 14).
 
 ``--size MxN`` adds handle files of another net size (the pipelines' ROWS/COLS); the sizes in
-``SIZES`` are always written.
+``SIZES`` are always written. ``--check`` writes nothing and exits 1 naming every committed
+file whose bytes the generator would change (the tests run it).
 """
 
 from __future__ import annotations
@@ -50,11 +51,18 @@ GEHRY = [(0.8, (1.0, 0.3, 0.2), 0.15, (0.5, 0.0, 0.2)),
 WALL = (0.85, (0.0, 0.0, 1.0), 0.1, (0.3, 0.0, 0.0))
 
 
+#: With ``--check``: the files that differ (nothing is written); else None.
+_CHECK: list[Path] | None = None
+
+
 def write_bytes(path: Path, data: bytes) -> None:
     """Write ``data`` unless the file already holds exactly it (idempotent, keeps mtimes)."""
-    path.parent.mkdir(parents=True, exist_ok=True)
     if path.exists() and path.read_bytes() == data:
         return
+    if _CHECK is not None:
+        _CHECK.append(path)
+        return
+    path.parent.mkdir(parents=True, exist_ok=True)
     path.write_bytes(data)
     print(f"wrote {path.relative_to(ROOT)}")
 
@@ -114,7 +122,11 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--size", action="append", default=[], metavar="MxN",
                     help="also write handle files for an MxN net (repeatable)")
+    ap.add_argument("--check", action="store_true",
+                    help="write nothing; exit 1 naming the files that would change")
     args = ap.parse_args(argv)
+    global _CHECK
+    _CHECK = [] if args.check else None
     extra = [tuple(int(k) for k in s.lower().split("x")) for s in args.size]
 
     csvs = {"gehry": HERE / "profiles" / "gehry.csv", "wall": HERE / "profiles" / "wall.csv"}
@@ -133,6 +145,10 @@ def main(argv=None) -> int:
     write_bytes(HERE / "meshes" / "felt.obj", write_mesh_obj("felt.obj", V, F))
     V, F = gridshell_patch()
     write_bytes(HERE / "meshes" / "gridshell.obj", write_mesh_obj("gridshell.obj", V, F))
+    if _CHECK:
+        for path in _CHECK:
+            print(f"differs: {path.relative_to(ROOT)}", file=sys.stderr)
+        return 1
     return 0
 
 
