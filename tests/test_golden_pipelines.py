@@ -30,3 +30,30 @@ def test_pipeline_matches_golden(tmp_path, name):
         diagonal = np.linalg.norm(np.ptp(w.reshape(-1, 3), axis=0))
         assert g.shape == w.shape and np.abs(g - w).max() <= COORD_REL * diagonal, stem
     assert got["dxf"] == want["dxf"]
+
+
+def _planned(name, out):
+    """The dgpc subcommands `make -n pipeline-NAME` would run now (what is out of date)."""
+    import os
+    import subprocess
+
+    rows, cols = SIZES[name]
+    env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+    text = subprocess.run(["make", "-n", "-o", ".venv/.installed", f"pipeline-{name}",
+                           f"OUT={out}", f"ROWS={rows}", f"COLS={cols}",
+                           f"BIN={Path(sys.executable).parent}"],
+                          cwd=Path(__file__).resolve().parents[1], check=True, env=env,
+                          capture_output=True, text=True).stdout
+    return [line.split()[2] for line in text.splitlines() if "/dgpc -q " in line]
+
+
+def test_make_rebuilds_only_what_changed(tmp_path):
+    """Targets are the artifact files: a finished pipeline has nothing to do, and a newer
+    intermediate artifact reruns only the stages downstream of it."""
+    import os
+
+    d = run("timber-cladding", tmp_path)
+    assert _planned("timber-cladding", tmp_path) == []
+    later = (d / "strips.json").stat().st_mtime + 10
+    os.utime(d / "strips.json", (later, later))
+    assert _planned("timber-cladding", tmp_path) == ["unfold", "nest", "report"]
