@@ -106,8 +106,10 @@ def init(reference, surface, profile, method, direction, from_quads, largest_com
 
     \b
     dgpc init --surface revolution --profile NAME|FILE --rows M --cols N -o STEM
-    dgpc init MESH --method geodesic [--direction x,y,z] [--extend F] [--rows M] [--cols N] -o S
-    dgpc init MESH --method project --direction x,y,z [--rows M] [--cols N|--spacing S] -o S
+    dgpc init MESH --method geodesic [--direction x,y,z] [--rows M] [--cols N|--spacing S]
+              [--extend F] -o STEM
+    dgpc init MESH --method project --direction x,y,z [--rows M] [--cols N|--spacing S]
+              [--extend F] -o STEM
     dgpc init --from-quads NET.obj [MESH] -o STEM
 
     With --surface the z axis is the axis of revolution and a CSV profile is resampled by arc
