@@ -61,7 +61,8 @@ def folded_faces(vertices: np.ndarray, faces: np.ndarray, n_original: int) -> in
     V, F = np.asarray(vertices, float), np.asarray(faces, np.int64)
     normals, _ = face_normals(V, F)
     edges, face_of = boundary_edges(F[:n_original])
-    edges, face_of = edges[outer_loop(V, edges)], face_of[outer_loop(V, edges)]
+    outer = outer_loop(V, edges)
+    edges, face_of = edges[outer], face_of[outer]
     added = normals[n_original:].reshape(2, -1, len(edges), 3)       # (tri, ring, edge, 3)
     return int((np.einsum("trsj,sj->trs", added, normals[face_of]) <= 0).sum())
 
@@ -114,8 +115,7 @@ def continued(mesh: ReferenceMesh, fraction: float) -> ReferenceMesh:
     does not."""
     if fraction <= 0:
         return mesh
-    V, F = extend_mesh(mesh.vertices, mesh.faces, fraction * mesh.bbox_diagonal)
-    folds = folded_faces(V, F, len(mesh.faces))
+    V, F, folds = _continuation(mesh, fraction)
     if folds:
         raise DgpcError(
             f"continuing {mesh.path.name} by {fraction:g} of its diagonal folds it at its "
@@ -130,8 +130,7 @@ def largest_unfolded(mesh: ReferenceMesh, fraction: float, steps: int = 12) -> f
     lo, hi = 0.0, fraction
     for _ in range(steps):
         mid = 0.5 * (lo + hi)
-        V, F = extend_mesh(mesh.vertices, mesh.faces, mid * mesh.bbox_diagonal)
-        lo, hi = (mid, hi) if folded_faces(V, F, len(mesh.faces)) == 0 else (lo, mid)
+        lo, hi = (mid, hi) if _continuation(mesh, mid)[2] == 0 else (lo, mid)
     return lo
 
 
@@ -142,7 +141,13 @@ def fit_surface(mesh: ReferenceMesh, fraction: float) -> ReferenceMesh:
     if fraction <= 0:
         return mesh
     reach = FIT_REACH * fraction
-    V, F = extend_mesh(mesh.vertices, mesh.faces, reach * mesh.bbox_diagonal)
-    if folded_faces(V, F, len(mesh.faces)):
-        reach = max(largest_unfolded(mesh, reach), fraction)
-    return continued(mesh, reach)
+    V, F, folds = _continuation(mesh, reach)
+    if not folds:
+        return dataclasses.replace(mesh, vertices=V, faces=F)
+    return continued(mesh, max(largest_unfolded(mesh, reach), fraction))
+
+
+def _continuation(mesh: ReferenceMesh, fraction: float) -> tuple[np.ndarray, np.ndarray, int]:
+    """:func:`extend_mesh` by ``fraction`` of the diagonal and its :func:`folded_faces`."""
+    V, F = extend_mesh(mesh.vertices, mesh.faces, fraction * mesh.bbox_diagonal)
+    return V, F, folded_faces(V, F, len(mesh.faces))
