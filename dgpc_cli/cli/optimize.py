@@ -38,17 +38,7 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
             raise DgpcError("--mode fit needs a reference mesh (--reference MESH)",
                             source="--reference")
         return None
-    return load_mesh(reference, pieces="largest" if _largest(net) else "all")
-
-
-def _largest(net: NetArtifact) -> bool:
-    return bool(net.parameters.get("largest_component"))
-
-
-def _extends(net: NetArtifact) -> float:
-    """How far (fraction of the reference's diagonal) the net may run past its reference
-    (``init --extend``); 0 for a net kept on it."""
-    return float(net.parameters.get("extend", 0.0))
+    return load_mesh(reference, pieces=net.reference_pieces)
 
 
 @click.command(short_help="Optimize a net (fit, developable, revolution, isometric).")
@@ -106,11 +96,11 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
             bar.update(k + 1 - last[0])
             last[0] = k + 1
 
-        surface = (ReferenceSurface.from_mesh(fit_surface(mesh, _extends(net)))
+        surface = (ReferenceSurface.from_mesh(fit_surface(mesh, net.extend))
                    if mesh is not None else None)
         # a net that runs past its reference (init --extend) has no rim on its boundary
         rim = (boundary_vertices(net.f, surface)
-               if surface is not None and not _extends(net)
+               if surface is not None and not net.extend
                and schedules.get("boundary", Schedule.constant(0)).end > 0 else None)
         outcome = optimize_net(
             net.f, schedules, reference=surface, boundary_ids=rim,
@@ -135,8 +125,7 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
         f=outcome.f,
         parameters={"mode": mode, "weights": describe_weights(schedules), "steps": steps,
                     "max_iter": max_iter, "tol": tol, "solver": backend,
-                    **({"largest_component": True} if _largest(net) else {}),
-                    **({"extend": _extends(net)} if _extends(net) else {})},
+                    **net.reference_parameters()},
         inputs=inputs, data=data, status=outcome.record())
     result.metrics = summarize(result, mesh=mesh,
                                against=net if mode == "isometric" else None)

@@ -40,6 +40,23 @@ class NetArtifact:
         """Grid size ``(m, n)``."""
         return int(self.f.shape[0]), int(self.f.shape[1])
 
+    @property
+    def reference_pieces(self) -> str:
+        """Which pieces of its reference mesh the net is fitted to and measured against:
+        ``"largest"`` when made with ``init --largest-component``, else ``"all"``."""
+        return "largest" if self.parameters.get("largest_component") else "all"
+
+    @property
+    def extend(self) -> float:
+        """How far (fraction of the reference's diagonal) the net may run past its reference
+        (``init --extend``); 0 for a net kept on it."""
+        return float(self.parameters.get("extend", 0.0))
+
+    def reference_parameters(self) -> dict:
+        """The parameters above that a stage passes on to the nets it writes."""
+        return {**({"largest_component": True} if self.reference_pieces == "largest" else {}),
+                **({"extend": self.extend} if self.extend else {})}
+
 
 def check_net_array(f, source) -> np.ndarray:
     """``f`` as a float64 ``(m, n, 3)`` array with m, n ≥ 2 and finite; DgpcError otherwise."""

@@ -43,8 +43,7 @@ def recorded_reference(net: NetArtifact, json_path: Path):
     if record.get("sha256") and sha256_file(path) != record["sha256"]:
         raise DgpcError(f"data.reference: {record['path']} changed since the net was written "
                         "(sha256 differs)", source=json_path)
-    return load_mesh(path, pieces="largest" if net.parameters.get("largest_component")
-                     else "all")
+    return load_mesh(path, pieces=net.reference_pieces)
 
 
 def recorded_weights(net: NetArtifact) -> dict:
@@ -68,7 +67,6 @@ def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact 
     f = net.f
     m, n = net.shape
     weights = recorded_weights(net)
-    extend = float(net.parameters.get("extend", 0.0))
     handles = net.data.get("handles")
     rim = net.data.get("boundary")
     problem = Problem(
@@ -76,7 +74,7 @@ def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact 
         f0=against.f if against is not None else None,
         handle_ids=np.asarray(handles["ids"], dtype=np.int64) if handles else None,
         handle_targets=np.asarray(handles["targets"], dtype=float) if handles else None,
-        reference=(ReferenceSurface.from_mesh(fit_surface(reference, extend))
+        reference=(ReferenceSurface.from_mesh(fit_surface(reference, net.extend))
                    if reference is not None else None),
         boundary_ids=np.asarray(rim["ids"], dtype=np.int64) if rim else None,
     )
