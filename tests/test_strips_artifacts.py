@@ -26,6 +26,16 @@ def _doc(d, stem):
     return json.loads((d / f"{stem}.json").read_text())
 
 
+def _edited(doc, path, value):
+    """A deep copy of ``doc`` with the item at ``path`` (keys and indices) set to ``value``."""
+    doc = copy.deepcopy(doc)
+    target = doc
+    for key in path[:-1]:
+        target = target[key]
+    target[path[-1]] = value
+    return doc
+
+
 @pytest.mark.parametrize("kind, stem", [("strips", "s"), ("flat", "f")])
 def test_written_artifacts_are_valid(artifacts, kind, stem):
     validate(_doc(artifacts, stem), load_schema(kind), "x")
@@ -39,11 +49,7 @@ def test_written_artifacts_are_valid(artifacts, kind, stem):
     (("data", "source_shape"), [5], "data.source_shape"),
 ])
 def test_invalid_strips_documents(artifacts, path, value, message):
-    doc = copy.deepcopy(_doc(artifacts, "s"))
-    target = doc
-    for key in path[:-1]:
-        target = target[key]
-    target[path[-1]] = value
+    doc = _edited(_doc(artifacts, "s"), path, value)
     with pytest.raises(DgpcError, match=message.replace("[", r"\[").replace("]", r"\]")):
         validate(doc, load_schema("strips"), "x")
 
@@ -58,11 +64,7 @@ def test_invalid_strips_documents(artifacts, path, value, message):
     (("data", "classes"), [], "data.classes"),
 ])
 def test_invalid_flat_documents(artifacts, path, value, message):
-    doc = copy.deepcopy(_doc(artifacts, "f"))
-    target = doc
-    for key in path[:-1]:
-        target = target[key]
-    target[path[-1]] = value
+    doc = _edited(_doc(artifacts, "f"), path, value)
     with pytest.raises(DgpcError, match=message):
         validate(doc, load_schema("flat"), "x")
 
