@@ -4,23 +4,48 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 DEMO   := demo-out
+# The pinned set `make setup` installs: what CI last passed with (pip constraints format).
+# pyproject.toml keeps the ranges, for users who install dgpc into an environment of theirs.
+LOCK   := constraints.txt
+LATEST := .venv-latest
 
 .DEFAULT_GOAL := help
-.PHONY: help setup test demo bench lint clean pipelines golden
+.PHONY: help setup test test-latest lock demo bench lint clean pipelines golden
 
 help: ## Show the targets.
-	@grep -hE '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  make %-8s %s\n", $$1, $$2}'
+	@grep -hE '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  make %-12s %s\n", $$1, $$2}'
 
-$(STAMP): pyproject.toml
+$(STAMP): pyproject.toml $(LOCK)
 	$(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test]'
+	$(BIN)/python -m pip install --quiet -c $(LOCK) --upgrade pip
+	$(BIN)/python -m pip install --quiet -c $(LOCK) -e '.[test]'
 	touch $(STAMP)
 
-setup: $(STAMP) ## Create .venv and install dgpc with its test extras.
+setup: $(STAMP) ## Create .venv and install dgpc with its test extras, pinned by constraints.txt.
 
 test: setup ## Run the test suite.
 	$(BIN)/python -m pytest -q
+
+test-latest: ## Run the tests with the newest releases pyproject.toml allows; reports, never fails.
+	rm -rf $(LATEST) && $(PYTHON) -m venv $(LATEST)
+	$(LATEST)/bin/python -m pip install --quiet --upgrade pip
+	$(LATEST)/bin/python -m pip install --quiet -e '.[test]'
+	@$(LATEST)/bin/python -m pip freeze --exclude-editable | grep -vi '^dgpc' \
+	    | diff -U0 $(LOCK) - | grep '^[-+][A-Za-z]' \
+	    | sed 's/^-/test-latest: pinned /; s/^+/test-latest: newest /' || \
+	    echo "test-latest: the newest releases are the pinned ones"
+	@$(LATEST)/bin/python -m pytest -q -o cache_dir=$(LATEST)/.pytest_cache \
+	    && echo "test-latest: green with the newest releases" \
+	    || echo "test-latest: FAILURES with the newest releases (above); constraints.txt keeps CI on the pinned set"
+
+lock: ## Refresh constraints.txt with the newest releases pyproject.toml allows (then run make test).
+	rm -rf $(LATEST) && $(PYTHON) -m venv $(LATEST)
+	$(LATEST)/bin/python -m pip install --quiet --upgrade pip
+	$(LATEST)/bin/python -m pip install --quiet -e '.[test]'
+	( echo "# Pinned set of make setup (pip constraints). Refresh: make lock; review; make test."; \
+	  echo "# Made on $$(uname -m) with $$($(LATEST)/bin/python -V)."; \
+	  $(LATEST)/bin/python -m pip freeze --all --exclude-editable \
+	    | grep -viE '^(dgpc|setuptools|wheel)[=@ ]' ) > $(LOCK).new && mv $(LOCK).new $(LOCK)
 
 lint: setup ## Run ruff.
 	$(BIN)/ruff check dgpc_cli tests benchmarks samples
@@ -43,4 +68,4 @@ golden: setup ## Refresh tests/golden/ from small pipeline runs (only after a re
 	$(BIN)/python tests/golden/refresh.py
 
 clean: ## Remove the virtualenv and generated output.
-	rm -rf $(VENV) $(DEMO) out .pytest_cache .ruff_cache *.egg-info
+	rm -rf $(VENV) $(LATEST) $(DEMO) out .pytest_cache .ruff_cache *.egg-info

@@ -63,8 +63,16 @@ def test_developable_fit_keeps_covering_the_reference(felt):
 
 
 def test_without_the_boundary_term_the_rim_creeps_in(felt):
-    dgpc("optimize", felt / "n0", "--mode", "developable", "--reference", FELT,
-         "--weight", "boundary=0", "-o", felt / "n2")
-    m2 = metrics(felt / "n2")
-    assert m2["coverage"]["area_fraction"] < 0.97
-    assert "boundary" not in read_net(felt / "n2").data
+    """A case where the creep is certain, not a matter of rounding: fairness held at 0.1
+    (second differences of a curved net shorten it, as a curve-shortening flow does) while
+    approximation lets every vertex slide along the felt. Without the boundary term the net
+    shrinks by a large fraction; with it the rim stays on the felt's edge."""
+    common = ["optimize", felt / "n0", "--mode", "fit", "--reference", FELT,
+              "--weight", "fairness=0.1", "--max-iter", "60"]
+    dgpc(*common, "--weight", "boundary=0", "-o", felt / "shrunk")
+    dgpc(*common, "-o", felt / "held")
+    shrunk, held = metrics(felt / "shrunk"), metrics(felt / "held")
+    assert shrunk["coverage"]["area_fraction"] < 0.8
+    assert held["coverage"]["area_fraction"] >= 0.99
+    assert "boundary" not in read_net(felt / "shrunk").data
+    assert "boundary" in read_net(felt / "held").data

@@ -10,7 +10,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "golden"))
 
-from pipelines import COORD_REL, FLOOR, GOLDEN, REL, SIZES, collect, run  # noqa: E402
+from pipelines import FLOOR, GOLDEN, SIZES, collect, coord_tol, rel_tol, run  # noqa: E402
 
 
 @pytest.mark.parametrize("name", list(SIZES))
@@ -21,14 +21,14 @@ def test_pipeline_matches_golden(tmp_path, name):
     assert got["metrics"].keys() == want["metrics"].keys()
     for key, w in want["metrics"].items():
         g = got["metrics"][key]
-        assert abs(g - w) <= REL * max(abs(g), abs(w)) or max(abs(g), abs(w)) <= FLOOR, \
-            (key, g, w)
+        assert abs(g - w) <= rel_tol(name, key) * max(abs(g), abs(w)) \
+            or max(abs(g), abs(w)) <= FLOOR, (key, g, w)
     assert got["counts"] == want["counts"]
     assert got["nets"].keys() == want["nets"].keys()
     for stem, w in want["nets"].items():
         w, g = np.array(w), np.array(got["nets"][stem])
         diagonal = np.linalg.norm(np.ptp(w.reshape(-1, 3), axis=0))
-        assert g.shape == w.shape and np.abs(g - w).max() <= COORD_REL * diagonal, stem
+        assert g.shape == w.shape and np.abs(g - w).max() <= coord_tol(name) * diagonal, stem
     assert got["dxf"] == want["dxf"]
 
 

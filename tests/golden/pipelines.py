@@ -4,10 +4,21 @@
 root; ``collect(name, out)`` reads the artifacts into a reviewable, JSON-able dict:
 
 - ``metrics``: key figures from ``dgpc inspect`` (SPEC §8), compared with relative tolerance
-  ``REL`` — or both at most ``FLOOR`` (residual-type numbers at solver noise level);
+  ``rel_tol(name, key)`` — or both at most ``FLOOR`` (residual-type numbers at solver noise
+  level);
 - ``counts``: integers (parts, classes, sheets, mold pieces, laths), compared exactly;
-- ``nets``: the final nets' coordinates, compared within ``COORD_REL`` × bbox diagonal;
+- ``nets``: the final nets' coordinates, compared within ``coord_tol(name)`` × bbox diagonal;
 - ``dxf``: DXF entity counts by layer and type (re-read with ezdxf), compared exactly.
+
+Tolerances follow how well each figure is determined by the pipeline's inputs. A net that
+meets hard constraints only (isometric deformations, the fits whose approximation term is
+hard) is fixed to rounding: ``REL`` and ``COORD_REL``. A fit whose vertices may slide along
+the reference (the gridshell's gpc fit beyond its reference) or whose figure mixes in a soft
+term (the felt's nearly developable fit) stops where its soft terms stop falling; that point
+moves with the last bits of the arithmetic, which differ between CPUs (OpenBLAS, bundled in
+numpy's and scipy's wheels, picks its kernels by CPU: another kernel sums in another order).
+``spread.py`` measures it by running every pipeline with another OpenBLAS kernel; the
+tolerances below are ten times or more what it measured (figures in the comments).
 """
 
 from __future__ import annotations
@@ -30,6 +41,27 @@ from dgpc_cli.metrics.hausdorff import hausdorff
 ROOT = Path(__file__).resolve().parents[2]
 GOLDEN = Path(__file__).resolve().parent
 REL, FLOOR, COORD_REL = 1e-6, 1e-8, 1e-9
+
+#: Relative tolerances of the figures of soft fits (measured with another OpenBLAS kernel:
+#: felt R 2.6e-7, congruence 7.1e-5; gridshell Hausdorff 1.7e-2 and 4.5e-4, coverage 1.7e-4).
+SOFT_REL = {
+    "felt-developable": {"R": 1e-4, "congruence_error": 1e-2},
+    "gridshell": {"hausdorff_over_diagonal_a": 0.2, "hausdorff_over_diagonal_b": 0.2,
+                  "coverage_a": 5e-3, "coverage_b": 5e-3},
+}
+#: Coordinate tolerances (× bbox diagonal) of soft fits (measured: felt 1.2e-9, gridshell
+#: 5.6e-4: its vertices slide along the reference, the surface they span stays put).
+SOFT_COORD = {"felt-developable": 1e-7, "gridshell": 1e-2}
+
+
+def rel_tol(name: str, key: str) -> float:
+    """Relative tolerance of metric ``key`` of pipeline ``name``."""
+    return SOFT_REL.get(name, {}).get(key, REL)
+
+
+def coord_tol(name: str) -> float:
+    """Tolerance of the final nets' coordinates of pipeline ``name``, × bbox diagonal."""
+    return SOFT_COORD.get(name, COORD_REL)
 
 #: pipeline -> (ROWS, COLS) of its small version; the handle files of these sizes are in samples/.
 SIZES = {
@@ -161,8 +193,9 @@ def collect(name: str, d: Path) -> dict:
     return {
         "pipeline": name,
         "size": list(SIZES[name]),
-        "tolerances": {"metrics_rel": REL, "metrics_floor": FLOOR,
-                       "coordinates_rel_to_bbox_diagonal": COORD_REL, "counts": "exact",
+        "tolerances": {"metrics_rel": {k: rel_tol(name, k) for k in METRICS[name]},
+                       "metrics_floor": FLOOR,
+                       "coordinates_rel_to_bbox_diagonal": coord_tol(name), "counts": "exact",
                        "dxf": "exact"},
         "metrics": {k: float(get(*v)) for k, v in METRICS[name].items()},
         "counts": {k: int(get(*v)) for k, v in COUNTS[name].items()},
