@@ -21,6 +21,7 @@ from dgpc_cli.stages.extract_mold import (
     DEFAULT_TOL,
     extract_mold,
 )
+from dgpc_cli.stages.soundness import require_sound_net
 
 log = logging.getLogger(__name__)
 
@@ -63,6 +64,8 @@ def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length,
     check_writable(output, force, *(paths[k] for k in ("profile_csv", "profile_dxf",
                                                         "panels_csv")))
     loaded = [(str(artifact_paths(stem)[0]), read_net(stem)) for stem in nets]
+    for name, net in loaded:
+        require_sound_net(net.f, name)
     mold = extract_mold([(name, net.f) for name, net in loaded], segments=segments, lam=lam,
                         panel_size=panel_size, flat_tol=flat_tol, max_length=mold_max_length,
                         tol=tol)

@@ -16,6 +16,7 @@ from dgpc_cli.io.laths import laths_files
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.stages.laths import GAP, gridshell
+from dgpc_cli.stages.soundness import require_sound_net
 
 log = logging.getLogger(__name__)
 
@@ -49,6 +50,8 @@ def laths(net_a, net_b, gap, output, force, fmt):
             if p.exists():
                 raise DgpcError("already exists; use --force to overwrite", source=p)
     a, b = read_net(net_a), read_net(net_b)
+    require_sound_net(a.f, artifact_paths(net_a)[0])
+    require_sound_net(b.f, artifact_paths(net_b)[0])
     ref_a, ref_b = a.data.get("reference"), b.data.get("reference")
     if ref_a and ref_b and ref_a.get("sha256") != ref_b.get("sha256"):
         log.warning("%s and %s record different references", net_a, net_b)

@@ -21,6 +21,7 @@ from dgpc_cli.stages.planarize import (
     planarize_strips,
     strips_metrics,
 )
+from dgpc_cli.stages.soundness import require_sound_net
 
 log = logging.getLogger(__name__)
 
@@ -50,6 +51,7 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, output, force, fmt)
     json_path, _ = artifact_paths(stem)
     check_writable(output, force)
     net = read_net(stem)
+    require_sound_net(net.f, json_path)
     m, n = net.shape
     columns = parse_strip_range(strip_range, n)
     with progressbar(ctx, len(columns), "planarize strips") as bar:

@@ -13,6 +13,7 @@ from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.flat import FlatArtifact, flat_files
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.strips import read_strips
+from dgpc_cli.stages.soundness import require_sound_strips
 from dgpc_cli.stages.unfold import CONGRUENCE_TOL, unfold_strips
 
 log = logging.getLogger(__name__)
@@ -40,6 +41,7 @@ def unfold(stem, mirror_ok, congruence_tol, output, force, fmt):
     json_path, _ = artifact_paths(stem)
     check_writable(output, force)
     strips = read_strips(stem)
+    require_sound_strips(strips.geometry, [r["id"] for r in strips.records], json_path)
     parts, classes, metrics = unfold_strips(
         strips.geometry, [r["id"] for r in strips.records], [r["v"] for r in strips.records],
         congruence_tol=congruence_tol, mirror_ok=mirror_ok, source=json_path)
