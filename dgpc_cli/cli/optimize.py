@@ -27,16 +27,21 @@ from dgpc_cli.tolerances import tol as TOL
 log = logging.getLogger(__name__)
 
 
-def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: str):
-    """The reference mesh: --reference, else the one the net records (fit needs one); only its
-    largest piece when the net was made with ``init --largest-component``."""
-    if reference is None and mode == "fit" and net.data.get("reference"):
+def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: str,
+               keep: bool = True):
+    """The reference mesh: --reference, else the one the net records unless ``keep`` is off
+    (--no-reference; fit needs one); only its largest piece when the net was made with
+    ``init --largest-component``."""
+    if reference is None and keep and net.data.get("reference"):
         reference = resolve_input(net.data["reference"], json_path)
+        if not reference.is_file():
+            raise DgpcError(f"the reference it records, {reference}, is missing (give "
+                            "--reference MESH, or --no-reference to drop it)", source=json_path)
         log.info("using the reference recorded in %s: %s", json_path, reference)
     if reference is None:
         if mode == "fit":
             raise DgpcError("--mode fit needs a reference mesh (--reference MESH)",
-                            source="--reference")
+                            source="--no-reference" if not keep else "--reference")
         return None
     return load_mesh(reference, pieces=net.reference_pieces)
 
@@ -48,7 +53,11 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
                    "revolution: isometric to a surface of revolution (7); isometric: "
                    "isometric deformation by handles.")
 @click.option("--reference", type=click.Path(dir_okay=False, path_type=Path),
-              help="Reference triangle mesh (OBJ/PLY/STL/OFF) for the approximation term.")
+              help="Reference triangle mesh (OBJ/PLY/STL/OFF) for the approximation term "
+                   "[default: the one the net records].")
+@click.option("--no-reference", is_flag=True,
+              help="Drop the reference the net records: no approximation or boundary term, "
+                   "and the new net records none.")
 @click.option("--handles", type=click.Path(dir_okay=False, path_type=Path),
               help='Handles JSON: {"handles": [{"index": [u, v], "target": [x, y, z]} | '
                    '{"index": [u, v], "offset": [dx, dy, dz]}]}.')
@@ -57,8 +66,10 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
 @click.option("--weight", "weights", multiple=True, metavar="NAME=VALUE|NAME=A->B",
               help="Override a term's weight, or a schedule such as fairness=0.01->0 "
                    "(repeatable).")
-@click.option("--max-iter", type=click.IntRange(min=1), default=TOL.max_iter,
-              show_default=True, help="Iteration limit per step.")
+@click.option("--max-iter", type=click.IntRange(min=1), default=None,
+              help="Iteration limit of the whole run, handle steps and the final projection "
+                   f"onto the hard constraints included [default: {TOL.max_iter} for each "
+                   "step and for the projection].")
 @click.option("--tol", type=click.FloatRange(min=0, min_open=True), default=TOL.solver_R,
               show_default=True, help="Tolerance on the residual of the hard constraints "
                                       "(net scaled to mean edge length 1).")
@@ -68,8 +79,8 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
 @force_opt
 @format_opt
 @click.pass_context
-def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol, backend,
-             output, force, fmt):
+def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, max_iter, tol,
+             backend, output, force, fmt):
     """Optimize the net STEM with guided projection (paper §5) and write it to -o STEM2.
 
     Exit code 3 if the last step does not reach --tol (the artifact is still written, with
@@ -79,17 +90,23 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
         schedules = mode_weights(mode, weights)
     except ValueError as err:
         raise click.BadParameter(str(err), ctx=ctx, param_hint="--weight") from None
+    if no_reference and reference is not None:
+        raise click.UsageError("give --reference or --no-reference, not both")
     json_path, _ = artifact_paths(stem)
     check_writable(output, force)
     net = read_net(stem)
-    mesh = _reference(net, json_path, reference, mode)
+    mesh = _reference(net, json_path, reference, mode, keep=not no_reference)
+    if mesh is None:  # the terms that need a reference are off, and the record says so
+        schedules.update({name: Schedule.constant(0.0) for name in ("approximation", "boundary")
+                          if name in schedules})
     handle_ids = handle_targets = None
     if handles is not None:
         handle_ids, handle_targets = read_handles(handles, net.shape, net.f)
     if mode == "isometric" and handle_ids is None:
         raise DgpcError("--mode isometric needs --handles", source="--handles")
 
-    with progressbar(ctx, steps * max_iter, f"optimize ({mode})") as bar:
+    budget = max_iter or TOL.max_iter * (steps + 1)
+    with progressbar(ctx, budget, f"optimize ({mode})") as bar:
         last = [0]
 
         def progress(k, record):
@@ -106,7 +123,7 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
             net.f, schedules, reference=surface, boundary_ids=rim,
             handle_ids=handle_ids, handle_targets=handle_targets, soft=SOFT[mode], steps=steps,
             max_iter=max_iter, tol=tol, backend=backend, progress=progress)
-        bar.update(steps * max_iter - last[0])
+        bar.update(budget - last[0])
 
     out_json, _ = artifact_paths(output)
     folder = out_json.resolve().parent
@@ -124,7 +141,7 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
     result = NetArtifact(
         f=outcome.f,
         parameters={"mode": mode, "weights": describe_weights(schedules), "steps": steps,
-                    "max_iter": max_iter, "tol": tol, "solver": backend,
+                    "max_iter": outcome.max_iter, "tol": tol, "solver": backend,
                     **net.reference_parameters()},
         inputs=inputs, data=data, status=outcome.record())
     result.metrics = summarize(result, mesh=mesh,

@@ -12,6 +12,7 @@ from dgpc_cli.core.layout import NetLayout
 from dgpc_cli.core.problem import Problem, constraint_error, mean_edge_length
 from dgpc_cli.core.solver import Schedule, SolverResult, guided_projection
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.tolerances import tol as TOL
 
 log = logging.getLogger(__name__)
 
@@ -26,6 +27,7 @@ class OptimizeOutcome:
     steps: list[SolverResult]
     residuals: dict[str, float]
     R: float
+    max_iter: int = 0
 
     @property
     def iterations(self) -> int:
@@ -78,7 +80,7 @@ def optimize_net(
     soft: tuple[str, ...] = ("fairness",),
     boundary_ids: np.ndarray | None = None,
     steps: int = 1,
-    max_iter: int = 200,
+    max_iter: int | None = None,
     tol: float = 1e-10,
     backend: str = "auto",
     progress: Callable[[int, dict], None] | None = None,
@@ -93,6 +95,10 @@ def optimize_net(
     ``boundary`` term keeps on the reference's boundary (see :func:`boundary_vertices`). The
     returned ``R`` is the paper's constraint error at the returned vertices, net rescaled to
     mean edge length 1 (§6.2.5).
+
+    ``max_iter`` bounds the iterations of the whole run: each step, and the final projection
+    onto the hard constraints when soft terms pull, gets an equal share of what is left
+    (default: ``tol.max_iter`` for each of them).
     """
     f = np.asarray(f, dtype=float)
     m, n = f.shape[:2]
@@ -111,7 +117,12 @@ def optimize_net(
     results: list[SolverResult] = []
     workspace = None
     total = 0
+    pulling = [name for name in problem.active()
+               if name in problem.soft and weights[name].end > 0]
+    phases = steps + bool(pulling)
+    max_iter = TOL.max_iter * phases if max_iter is None else max_iter
     for s in range(1, steps + 1):
+        allowance = (max_iter - total) // (phases - s + 1)
         targets = None
         if start is not None:
             targets = start + (handle_targets - start) * (s / steps)
@@ -120,7 +131,7 @@ def optimize_net(
             if progress is not None:
                 progress(_base + k, record)
 
-        result = guided_projection(x, problem.terms(targets), max_iter=max_iter, tol=tol,
+        result = guided_projection(x, problem.terms(targets), max_iter=allowance, tol=tol,
                                    backend=backend, workspace=workspace,
                                    retract=layout.orient_edges, callback=step_progress)
         log.info("step %d/%d: %s after %d iterations (%s)", s, steps, result.status,
@@ -129,9 +140,7 @@ def optimize_net(
         total += result.iterations
         results.append(result)
     last = results[-1]
-    pulling = [name for name in problem.active()
-               if name in problem.soft and weights[name].end > 0]
-    if not last.success and pulling:
+    if not last.success and pulling and total < max_iter:
         # The soft terms hold the hard ones off their tolerance (a reference that is not
         # exactly developable, say): project onto the hard constraints from here, soft terms
         # off, so that the result is the nearby net that meets them (guided projection's
@@ -141,7 +150,7 @@ def optimize_net(
                             problem.f0, handle_ids, handle_targets, reference, problem.soft,
                             boundary_ids)
         log.info("projecting onto the hard constraints without %s", ", ".join(pulling))
-        result = guided_projection(x, hard_only.terms(), max_iter=max_iter, tol=tol,
+        result = guided_projection(x, hard_only.terms(), max_iter=max_iter - total, tol=tol,
                                    backend=backend, retract=layout.orient_edges,
                                    callback=lambda k, r: progress and progress(total + k, r))
         x = result.x
@@ -150,4 +159,5 @@ def optimize_net(
     norms = problem.residual_norms(f_out)
     last = results[-1]
     return OptimizeOutcome(f=f_out, status=last.status, message=last.message, steps=results,
-                           residuals=norms, R=constraint_error(norms, weights))
+                           residuals=norms, R=constraint_error(norms, weights),
+                           max_iter=max_iter)
