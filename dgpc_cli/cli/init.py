@@ -156,7 +156,7 @@ def init(reference, surface, profile, method, direction, from_quads, largest_com
         net, mesh = _mesh_net(reference, method, d, rows, cols, spacing, largest_component,
                               extend)
     else:
-        from dgpc_cli.stages.init_mesh import init_from_quads
+        from dgpc_cli.stages.init_quads import init_from_quads
 
         net = init_from_quads(from_quads)
         net.inputs["quads"] = file_input(from_quads, folder)
