@@ -21,7 +21,8 @@ from dgpc_cli.io.net import NetArtifact, net_files, read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.stages.inspect import summarize
 from dgpc_cli.stages.modes import MODES, SOFT, describe_weights, mode_weights
-from dgpc_cli.stages.optimize import boundary_vertices, optimize_net
+from dgpc_cli.stages.optimize import optimize_net
+from dgpc_cli.stages.rim import held_rim
 from dgpc_cli.tolerances import tol as TOL
 
 log = logging.getLogger(__name__)
@@ -115,10 +116,10 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
 
         surface = (ReferenceSurface.from_mesh(fit_surface(mesh, net.extend))
                    if mesh is not None else None)
-        # a net that runs past its reference (init --extend) has no rim on its boundary
-        rim = (boundary_vertices(net.f, surface)
-               if surface is not None and not net.extend
-               and schedules.get("boundary", Schedule.constant(0)).end > 0 else None)
+        # the rim stays on the reference's boundary where it starts there, else on itself
+        rim = guides = None
+        if surface is not None and schedules.get("boundary", Schedule.constant(0)).end > 0:
+            rim, surface, guides = held_rim(net.f, surface, guide=not net.extend)
         outcome = optimize_net(
             net.f, schedules, reference=surface, boundary_ids=rim,
             handle_ids=handle_ids, handle_targets=handle_targets, soft=SOFT[mode], steps=steps,
@@ -137,7 +138,8 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
         inputs["handles"] = file_input(handles, folder)
         data["handles"] = {"ids": handle_ids.tolist(), "targets": handle_targets.tolist()}
     if rim is not None and len(rim):
-        data["boundary"] = {"ids": rim.tolist()}
+        data["boundary"] = {"ids": rim.tolist(),
+                            **({"guides": guides.tolist()} if guides is not None else {})}
     result = NetArtifact(
         f=outcome.f,
         parameters={"mode": mode, "weights": describe_weights(schedules), "steps": steps,

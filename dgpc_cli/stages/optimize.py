@@ -145,8 +145,11 @@ def optimize_net(
         # exactly developable, say): project onto the hard constraints from here, soft terms
         # off, so that the result is the nearby net that meets them (guided projection's
         # damping keeps it close).
-        hard_only = Problem(layout, problem.scale, {**weights, **{name: Schedule.constant(0.0)
-                                                                 for name in pulling}},
+        # every weight at its final value: a schedule such as fairness 0.01->0 must not start
+        # again and drag the net (it would, unopposed, with the soft terms off)
+        settled = {name: Schedule.constant(0.0 if name in pulling else w.end)
+                   for name, w in weights.items()}
+        hard_only = Problem(layout, problem.scale, settled,
                             problem.f0, handle_ids, handle_targets, reference, problem.soft,
                             boundary_ids)
         log.info("projecting onto the hard constraints without %s", ", ".join(pulling))
