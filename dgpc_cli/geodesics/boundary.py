@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dgpc_cli.geodesics.extension import boundary_edges
+from dgpc_cli.geodesics.extension import boundary_edges, chained
 from dgpc_cli.geodesics.section import SectionCurve
 from dgpc_cli.geodesics.tracing import face_normals
 
@@ -39,25 +39,6 @@ class BoundaryCurve:
         return self.curve.length
 
 
-def _loops(edges: np.ndarray) -> list[np.ndarray]:
-    """The directed boundary edges ``(s, 2)`` chained into loops: lists of edge indices in
-    order (one walk per loop; an edge follows the one that ends where it starts)."""
-    follow = np.full(int(edges.max()) + 1, -1, dtype=np.int64)
-    follow[edges[:, 0]] = np.arange(len(edges))
-    seen = np.zeros(len(edges), dtype=bool)
-    loops = []
-    for first in range(len(edges)):  # one walk per loop, along its edges
-        if seen[first]:
-            continue
-        order, e = [], first
-        while e >= 0 and not seen[e]:
-            seen[e] = True
-            order.append(e)
-            e = follow[edges[e, 1]]
-        loops.append(np.asarray(order, dtype=np.int64))
-    return loops
-
-
 def boundary_curves(vertices: np.ndarray, faces: np.ndarray,
                     corner_angle: float = CORNER_ANGLE) -> list[BoundaryCurve]:
     """The boundary curves of the mesh ``vertices (k, 3)``, ``faces (t, 3)`` (see the module),
@@ -67,7 +48,7 @@ def boundary_curves(vertices: np.ndarray, faces: np.ndarray,
     if len(edges) == 0:
         return []
     normals, _ = face_normals(V, F)
-    loops = sorted(_loops(edges), key=lambda loop: -float(np.linalg.norm(
+    loops = sorted(chained(edges), key=lambda loop: -float(np.linalg.norm(
         V[edges[loop, 1]] - V[edges[loop, 0]], axis=1).sum()))
     pieces = []
     for k, loop in enumerate(loops):
