@@ -44,7 +44,8 @@ def unfold(stem, mirror_ok, congruence_tol, output, force, fmt):
     require_sound_strips(strips.geometry, [r["id"] for r in strips.records], json_path)
     parts, classes, metrics = unfold_strips(
         strips.geometry, [r["id"] for r in strips.records], [r["v"] for r in strips.records],
-        congruence_tol=congruence_tol, mirror_ok=mirror_ok, source=json_path)
+        congruence_tol=congruence_tol, mirror_ok=mirror_ok, source=json_path,
+        trims=[r.get("trim") for r in strips.records])
     out_json, _ = artifact_paths(output)
     art = FlatArtifact(
         parts=parts, classes=classes,

@@ -57,7 +57,9 @@ class FlatArtifact:
 def _obj_bytes(parts: list) -> bytes:
     return format_parts_obj(f"flat parts ({len(parts)}), developed strips in the plane z = 0",
                             [(p["id"], np.asarray(p["geodesics"][0], float),
-                              np.asarray(p["geodesics"][1], float)) for p in parts])
+                              np.asarray(p["geodesics"][1], float)) for p in parts],
+                            outlines={p["id"]: (p["outline"], p["score"]) for p in parts
+                                      if p.get("trimmed")})
 
 
 def flat_files(stem: str | Path, art: FlatArtifact) -> dict[Path, bytes]:

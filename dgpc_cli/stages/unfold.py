@@ -9,8 +9,9 @@ import numpy as np
 from shapely.geometry import Polygon
 
 from dgpc_cli.errors import DgpcError
-from dgpc_cli.strips.congruence import congruence_classes
+from dgpc_cli.strips.congruence import Alignment, congruence_classes
 from dgpc_cli.strips.develop import develop_strip, signed_area
+from dgpc_cli.strips.trim import developed_part
 
 log = logging.getLogger(__name__)
 
@@ -21,14 +22,20 @@ CONGRUENCE_TOL = 1e-3
 def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
                   congruence_tol: float = CONGRUENCE_TOL,
                   mirror_ok: bool = False,
-                  source: str | None = None) -> tuple[list[dict], list[dict], dict]:
+                  source: str | None = None,
+                  trims: list | None = None) -> tuple[list[dict], list[dict], dict]:
     """Develop every strip ``(A, B)`` of ``geometry`` and classify the developments.
 
     Returns the part records and class records of the flat artifact (see
     :mod:`dgpc_cli.io.flat`) and its metrics. DgpcError (naming ``source``) when a developed
-    outline crosses itself: a cutter cannot cut it.
+    outline crosses itself: a cutter cannot cut it. ``trims[i]`` (``planarize-strips
+    --trim``), when given, lists the parts of strip i inside the reference's outline (records
+    with ``id`` and ``outline`` in the strip's ``(t, s)``): those are developed instead of the
+    whole strip, each its own congruence class (their end cuts follow the outline).
     """
     devs = [develop_strip(A, B) for A, B in geometry]
+    if trims is not None and any(t is not None for t in trims):
+        return _unfold_trimmed(devs, ids, columns, trims, congruence_tol, mirror_ok, source)
     folded = [ids[i] for i, d in enumerate(devs) if not Polygon(d.outline).is_valid]
     if folded:
         raise DgpcError(f"the developed outline of {', '.join(folded)} crosses itself (its "
@@ -57,6 +64,43 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
     log.info("%d parts in %d congruence classes; max strain %.3g", len(parts),
              len(class_records), metrics["max_strain"])
     return parts, class_records, metrics
+
+
+def _unfold_trimmed(devs, ids, columns, trims, congruence_tol, mirror_ok, source):
+    """:func:`unfold_strips` for strips clipped to the reference's outline."""
+    whole = [i for i, t in enumerate(trims) if t is None]
+    if whole:
+        parts, classes, _ = unfold_strips(
+            [(devs[i].A, devs[i].B) for i in whole], [ids[i] for i in whole],
+            [columns[i] for i in whole], congruence_tol=congruence_tol, mirror_ok=mirror_ok,
+            source=source)
+    else:
+        parts, classes = [], []
+    identity = Alignment(R=np.eye(2), t=np.zeros(2), relabel="identity", mirrored=False,
+                         error=0.0)
+    for i, trim in enumerate(trims):
+        if trim is None:
+            continue
+        d = devs[i]
+        for piece in trim["parts"]:
+            part = developed_part(d.A, d.B, np.asarray(piece["outline"], float))
+            if not Polygon(part["outline"]).is_valid:
+                raise DgpcError(f"the developed outline of {piece['id']} crosses itself",
+                                source=source)
+            cls = f"C{len(classes) + 1:02d}"
+            parts.append({"id": piece["id"], "strip": int(columns[i]), "class": cls,
+                          "strain": d.strain, "alignment": identity.record(part["length"]),
+                          "trimmed": True, **part})
+            classes.append({"id": cls, "representative": piece["id"], "quantity": 1,
+                            "members": [piece["id"]], "max_error": 0.0,
+                            "max_relative_error": 0.0})
+    if not parts:
+        raise DgpcError("no part lies inside the reference's outline", source=source)
+    metrics = flat_metrics(parts, classes)
+    log.info("%d parts (%d trimmed to the outline) in %d congruence classes; max strain %.3g",
+             len(parts), sum(bool(p.get("trimmed")) for p in parts), len(classes),
+             metrics["max_strain"])
+    return parts, classes, metrics
 
 
 def flat_metrics(parts: list[dict], classes: list[dict]) -> dict:
