@@ -4,6 +4,7 @@ what is wrong and where, and the fabrication stages that refuse such a net with 
 import numpy as np
 import pytest
 from cli_helpers import dgpc
+from test_mesh_inputs import one_line_error
 
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import NetArtifact, write_net
@@ -83,19 +84,12 @@ def test_a_large_gpc_defect_is_degenerate_a_small_one_is_not():
     assert not degeneracies(f, gpc_limit=None)
 
 
-def one_line(result, *words):
-    err = result.stderr.strip()
-    assert len(err.splitlines()) == 1 and err.startswith("Error:"), err
-    for w in words:
-        assert w in err, (w, err)
-
-
 def test_laths_refuse_a_folded_net(tmp_path):
     write_net(tmp_path / "a", NetArtifact(f=folded()))
     g = plane(9, 6)[:, :, [1, 0, 2]]
     write_net(tmp_path / "b", NetArtifact(f=g))
     r = dgpc("laths", tmp_path / "a", tmp_path / "b", "-o", tmp_path / "l", expect=1)
-    one_line(r, "a.json", "degenerate", "rows 3-5")
+    one_line_error(r, "a.json", "degenerate", "rows 3-5")
     assert not list(tmp_path.glob("l.*"))
     # the same pair unfolded is fine
     write_net(tmp_path / "a2", NetArtifact(f=plane(9, 6)))
@@ -109,14 +103,14 @@ def test_extract_mold_refuses_a_collapsed_net(tmp_path):
     f[0] = f[1]
     write_net(tmp_path / "bad", NetArtifact(f=f))
     r = dgpc("extract-mold", tmp_path / "bad", "-o", tmp_path / "mold2", expect=1)
-    one_line(r, "bad.json", "rows 0-1", "shorter than")
+    one_line_error(r, "bad.json", "rows 0-1", "shorter than")
     assert not list(tmp_path.glob("mold2*"))
 
 
 def test_planarize_strips_refuses_a_folded_net(tmp_path):
     write_net(tmp_path / "n", NetArtifact(f=folded()))
     r = dgpc("planarize-strips", tmp_path / "n", "-o", tmp_path / "s", expect=1)
-    one_line(r, "n.json", "folded")
+    one_line_error(r, "n.json", "folded")
     assert not list(tmp_path.glob("s.*"))
 
 
@@ -139,5 +133,5 @@ def test_unfold_refuses_a_degenerate_strip(tmp_path, bad):
                          source_shape=(6, 3))
     write_files(strips_files(tmp_path / "s", art))
     r = dgpc("unfold", tmp_path / "s", "-o", tmp_path / "flat", expect=1)
-    one_line(r, "s.json", "S-v01", "degenerate")
+    one_line_error(r, "s.json", "S-v01", "degenerate")
     assert not list(tmp_path.glob("flat*"))

@@ -33,8 +33,9 @@ SLIVER = 1e-2
 #: mitred sharply; elsewhere they follow the averaged outward direction.
 CORNER = np.radians(40.0)
 #: Arc length (in mean boundary edges) either side of a vertex over which the outward
-#: direction of a smooth stretch is averaged.
-SMOOTHING = 2.0
+#: direction of a smooth stretch is averaged, at the ends of edges shorter than SHORT (in mean
+#: boundary edges).
+SMOOTHING, SHORT = 2.0, 0.5
 #: A net traced out to ``init --extend F`` is fitted to the mesh continued to this many times
 #: F, so its rim never meets a boundary (where the closest point would pull it back).
 FIT_REACH = 2.0
@@ -189,15 +190,18 @@ def extend_mesh(vertices: np.ndarray, faces: np.ndarray,
     mitre = (n_in + n_out) / (1.0 + cos)[:, None]
     size = np.linalg.norm(mitre, axis=1, keepdims=True)
     mitre *= np.minimum(1.0, MAX_MITRE / np.maximum(size, 1e-300))
-    # along a smooth stretch the direction is the edges' outward field averaged over
-    # SMOOTHING mean edges of arc length: facet normals differ from edge to edge, and the rings
-    # over a short edge whose ends took them as they are would fold a short way out
+    # at the ends of a short edge on a smooth stretch the direction is the edges' outward field
+    # averaged over SMOOTHING mean edges of arc length: facet normals differ from edge to edge,
+    # and the rings over a short edge whose ends took them as they are would fold a short way
+    # out (elsewhere the mitre keeps the offset edges parallel)
     width = float(np.mean(length))
     smooth = cos > np.cos(CORNER)
+    short = np.zeros(len(loop), dtype=bool)
+    short[slot[length < SHORT * width].ravel()] = True
     averaged = _along_loop_average(edges, length, out, SMOOTHING * width, smooth[slot[:, 0]])
     field = np.zeros((len(loop), 3))
     field[slot[:, 0]] = averaged
-    mitre = np.where(smooth[:, None], field, mitre)
+    mitre = np.where((smooth & short)[:, None], field, mitre)
     rings = max(1, int(np.ceil(distance / (RING_WIDTH * width))))
     step = distance / rings
     k = np.arange(1, rings + 1)[:, None, None]
