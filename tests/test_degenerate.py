@@ -133,5 +133,5 @@ def test_unfold_refuses_a_degenerate_strip(tmp_path, bad):
                          source_shape=(6, 3))
     write_files(strips_files(tmp_path / "s", art))
     r = dgpc("unfold", tmp_path / "s", "-o", tmp_path / "flat", expect=1)
-    one_line_error(r, "s.json", "S-v01", "degenerate")
+    one_line_error(r, "s.json", "S-v01", bad, "rows")
     assert not list(tmp_path.glob("flat*"))

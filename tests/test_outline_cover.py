@@ -30,7 +30,9 @@ def fitted(request, meshes):
     mesh = meshes[request.param]
     stem = mesh.with_suffix("")
     r = dgpc("init", mesh, "--method", "geodesic", "-o", f"{stem}-0")
-    dgpc("optimize", f"{stem}-0", "--mode", "fit", "-o", f"{stem}-fit")
+    # fitted to a triangle mesh, R settles near 1e-9 (closest points hop between facets), as
+    # in the gridshell pipeline
+    dgpc("optimize", f"{stem}-0", "--mode", "fit", "--tol", 1e-8, "-o", f"{stem}-fit")
     return request.param, mesh, stem, r.stderr
 
 
@@ -84,7 +86,9 @@ def test_an_extended_roof_net_fits_to_the_gridshell_figure(extended):
     h = m["hausdorff"]
     assert m["coverage"]["area_fraction"] == pytest.approx(1.0, abs=1e-9)
     assert h["reference_to_net_max"] <= 1.2e-3 * h["diagonal"]
-    assert m["R"] <= 1e-8 and not degeneracies(read_net(f"{extended}-e").f)
+    net = read_net(f"{extended}-e")
+    assert net.status["state"] == "converged" and not degeneracies(net.f)
+    assert m["gpc_angle_defect_max"] <= 1e-6
 
 
 def test_trimmed_strips_clad_the_whole_roof(extended, meshes):

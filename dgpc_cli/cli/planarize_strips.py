@@ -69,7 +69,7 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, output, force
     json_path, _ = artifact_paths(stem)
     check_writable(output, force)
     net = read_net(stem)
-    require_sound_net(net.f, json_path)
+    require_sound_net(net.f, json_path, gpc=False)
     m, n = net.shape
     columns = parse_strip_range(strip_range, n)
     outline = _outline(net, json_path) if trim else None

@@ -5,8 +5,8 @@ A net ``f (m, n, 3)`` is *degenerate* where
 
 * an edge is shorter than :data:`EDGE_RATIO` of the mean edge (collapsed rows or columns),
 * a quad's normal flips against a neighbour's (a fold: the normals of two quads sharing an
-  edge point to opposite sides; or the two triangles of one quad, cut along either diagonal,
-  face opposite ways: a quad folded over itself), or its vector area vanishes, or
+  edge turn by more than 120°, :data:`FLIP_COS`; or the two triangles of one quad, cut along
+  either diagonal, do: a quad folded over itself), or its vector area vanishes, or
 * the angle defect of geodesic parallel coordinates (Prop. 2.7 (ii), equation (6)) exceeds
   :data:`GPC_LIMIT` radians: far from a discrete gpc net, typically where the grid turns over.
 
@@ -22,12 +22,17 @@ import numpy as np
 from dgpc_cli.metrics.frames import edge_lengths
 from dgpc_cli.metrics.residuals import gpc_angle_defect
 
-__all__ = ["EDGE_RATIO", "GPC_LIMIT", "Degeneracy", "degeneracies", "index_ranges"]
+__all__ = ["EDGE_RATIO", "FLIP_COS", "GPC_LIMIT", "Degeneracy", "degeneracies",
+           "index_ranges"]
 
 #: An edge shorter than this fraction of the mean edge length is collapsed.
 EDGE_RATIO = 1e-3
 #: A gpc angle defect (radians) above this marks a degenerate vertex.
 GPC_LIMIT = 0.1
+#: Neighbouring quad normals (or a quad's two triangles) whose cosine is below this are
+#: flipped: turned by more than 120°, beyond what a coarse but sound net bends (a ring of five
+#: quads round a catenoid's waist turns by 85°), short of a fold's 180°.
+FLIP_COS = -0.5
 
 
 def index_ranges(indices) -> str:
@@ -135,10 +140,10 @@ def degeneracies(f, *, edge_ratio: float = EDGE_RATIO,
     checked, for nets that are not meant to be gpc, e.g. the planar-quad strips of §6.2.4).
 
     Quad normals are the cross products of the diagonals (the vector area, valid for
-    non-convex quads); two quads sharing an edge fold when their normals have a negative dot
-    product, a quad folds over itself when the triangles (u,v),(u+1,v),(u+1,v+1) and
-    (u,v),(u+1,v+1),(u,v+1) face opposite ways (or those of the other diagonal), and a quad
-    with a vector area below ``(edge_ratio · mean edge)²`` has no normal at all.
+    non-convex quads); two quads sharing an edge fold when their unit normals' dot product is
+    below :data:`FLIP_COS`, a quad folds over itself when the triangles (u,v),(u+1,v),(u+1,v+1)
+    and (u,v),(u+1,v+1),(u,v+1) do (or those of the other diagonal), and a quad with a vector
+    area below ``(edge_ratio · mean edge)²`` has no normal at all.
     """
     f = np.asarray(f, dtype=float)
     m, n = f.shape[:2]
@@ -151,11 +156,16 @@ def degeneracies(f, *, edge_ratio: float = EDGE_RATIO,
     nq = _unit_or_nan(np.cross(c - a, d - b), area_floor)             # (m−1, n−1, 3)
     t1, t2 = np.cross(b - a, c - a), np.cross(c - a, d - a)           # diagonal a–c
     t3, t4 = np.cross(c - b, d - b), np.cross(d - b, a - b)           # diagonal b–d
-    self_fold = ((np.einsum("...i,...i->...", t1, t2) < 0)
-                 | (np.einsum("...i,...i->...", t3, t4) < 0))
+
+    def cos(x, y):
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.einsum("...i,...i->...", x, y) / (np.linalg.norm(x, axis=-1)
+                                                         * np.linalg.norm(y, axis=-1))
+
+    self_fold = (cos(t1, t2) < FLIP_COS) | (cos(t3, t4) < FLIP_COS)
     flip = self_fold | ~np.isfinite(nq).all(axis=-1)
-    across_u = np.einsum("...i,...i->...", nq[1:], nq[:-1]) < 0       # (m−2, n−1)
-    across_v = np.einsum("...i,...i->...", nq[:, 1:], nq[:, :-1]) < 0  # (m−1, n−2)
+    across_u = np.einsum("...i,...i->...", nq[1:], nq[:-1]) < FLIP_COS       # (m−2, n−1)
+    across_v = np.einsum("...i,...i->...", nq[:, 1:], nq[:, :-1]) < FLIP_COS  # (m−1, n−2)
     flip[1:] |= across_u
     flip[:-1] |= across_u
     flip[:, 1:] |= across_v

@@ -145,10 +145,9 @@ def optimize_net(
         # exactly developable, say): project onto the hard constraints from here, soft terms
         # off, so that the result is the nearby net that meets them (guided projection's
         # damping keeps it close).
-        # every weight at its final value: a schedule such as fairness 0.01->0 must not start
-        # again and drag the net (it would, unopposed, with the soft terms off)
-        settled = {name: Schedule.constant(0.0 if name in pulling else w.end)
-                   for name, w in weights.items()}
+        # the pulling terms fade out while a schedule such as fairness 0.01->0 runs again (it
+        # regularizes the first steps; alone it would drag the net, unopposed)
+        settled = {**weights, **{name: Schedule(weights[name].end, 0.0) for name in pulling}}
         hard_only = Problem(layout, problem.scale, settled,
                             problem.f0, handle_ids, handle_targets, reference, problem.soft,
                             boundary_ids)
