@@ -21,8 +21,8 @@ from dgpc_cli.io.net import NetArtifact, net_files, read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.stages.inspect import summarize
 from dgpc_cli.stages.modes import MODES, SOFT, describe_weights, mode_weights
-from dgpc_cli.stages.optimize import optimize_net
-from dgpc_cli.stages.rim import held_rim
+from dgpc_cli.stages.optimize import boundary_vertices, optimize_net
+from dgpc_cli.stages.polish import polish_weights
 from dgpc_cli.tolerances import tol as TOL
 
 log = logging.getLogger(__name__)
@@ -100,6 +100,8 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
     if mesh is None:  # the terms that need a reference are off, and the record says so
         schedules.update({name: Schedule.constant(0.0) for name in ("approximation", "boundary")
                           if name in schedules})
+    if mode == "fit":
+        schedules = polish_weights(net.f, schedules, weights)
     handle_ids = handle_targets = None
     if handles is not None:
         handle_ids, handle_targets = read_handles(handles, net.shape, net.f)
@@ -116,10 +118,10 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
 
         surface = (ReferenceSurface.from_mesh(fit_surface(mesh, net.extend))
                    if mesh is not None else None)
-        # the rim stays on the reference's boundary where it starts there, else on itself
-        rim = guides = None
-        if surface is not None and schedules.get("boundary", Schedule.constant(0)).end > 0:
-            rim, surface, guides = held_rim(net.f, surface, guide=not net.extend)
+        # a net that runs past its reference (init --extend) has no rim on its boundary
+        rim = (boundary_vertices(net.f, surface)
+               if surface is not None and not net.extend
+               and schedules.get("boundary", Schedule.constant(0)).end > 0 else None)
         outcome = optimize_net(
             net.f, schedules, reference=surface, boundary_ids=rim,
             handle_ids=handle_ids, handle_targets=handle_targets, soft=SOFT[mode], steps=steps,
@@ -138,8 +140,7 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
         inputs["handles"] = file_input(handles, folder)
         data["handles"] = {"ids": handle_ids.tolist(), "targets": handle_targets.tolist()}
     if rim is not None and len(rim):
-        data["boundary"] = {"ids": rim.tolist(),
-                            **({"guides": guides.tolist()} if guides is not None else {})}
+        data["boundary"] = {"ids": rim.tolist()}
     result = NetArtifact(
         f=outcome.f,
         parameters={"mode": mode, "weights": describe_weights(schedules), "steps": steps,

@@ -16,9 +16,7 @@ DEGENERATE_AREA = 1e-20
 class ReferenceSurface:
     """A triangle mesh ``vertices (k, 3)``, ``faces (t, 3)`` queried for closest points.
 
-    Face normals follow the winding (right-hand rule); degenerate faces are dropped. Guide
-    segments (:meth:`with_guides`) count as boundary too: curves a net's rim is kept on where
-    it does not run along the mesh's own boundary.
+    Face normals follow the winding (right-hand rule); degenerate faces are dropped.
     """
 
     def __init__(self, vertices: np.ndarray, faces: np.ndarray):
@@ -44,7 +42,6 @@ class ReferenceSurface:
         self._tree = igl.AABB()
         self._tree.init(V, F)
         self._boundary: tuple[np.ndarray, np.ndarray] | None = None
-        self._guides: tuple[np.ndarray, np.ndarray] | None = None
 
     @classmethod
     def from_mesh(cls, mesh) -> ReferenceSurface:
@@ -60,18 +57,7 @@ class ReferenceSurface:
         """The surface with every coordinate multiplied by ``s > 0`` (normals unchanged)."""
         if not (np.isfinite(s) and s > 0):
             raise ValueError(f"scale must be positive and finite, got {s}")
-        out = ReferenceSurface(self.vertices * s, self.faces)
-        return out if self._guides is None else out.with_guides(self._guides[0] * s,
-                                                                self._guides[1] * s)
-
-    def with_guides(self, a: np.ndarray, b: np.ndarray) -> ReferenceSurface:
-        """A copy whose boundary also holds the segments ``a → b (g, 3)`` (same tree)."""
-        import copy
-
-        out = copy.copy(self)
-        out._guides = (np.asarray(a, float).reshape(-1, 3), np.asarray(b, float).reshape(-1, 3))
-        out._boundary = None
-        return out
+        return ReferenceSurface(self.vertices * s, self.faces)
 
     def closest(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Closest points ``p (k, 3)`` on the mesh to ``points (k, 3)`` and the unit normals
@@ -86,17 +72,14 @@ class ReferenceSurface:
 
     @property
     def boundary_segments(self) -> tuple[np.ndarray, np.ndarray]:
-        """End points ``a, b (s, 3)`` of the boundary edges (edges of one face only) and of the
-        guide segments; empty for a closed mesh without guides."""
+        """End points ``a, b (s, 3)`` of the boundary edges (edges of one face only); empty for a
+        closed mesh."""
         if self._boundary is None:
             F = self.faces
             edges = np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1)
             unique, counts = np.unique(edges, axis=0, return_counts=True)
             once = unique[counts == 1]
-            a, b = self.vertices[once[:, 0]], self.vertices[once[:, 1]]
-            if self._guides is not None:
-                a, b = np.concatenate([a, self._guides[0]]), np.concatenate([b, self._guides[1]])
-            self._boundary = (a, b)
+            self._boundary = (self.vertices[once[:, 0]], self.vertices[once[:, 1]])
         return self._boundary
 
     def closest_on_boundary(self, points: np.ndarray, chunk: int = 256):

@@ -69,17 +69,13 @@ def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact 
     weights = recorded_weights(net)
     handles = net.data.get("handles")
     rim = net.data.get("boundary")
-    surface = (ReferenceSurface.from_mesh(fit_surface(reference, net.extend))
-               if reference is not None else None)
-    if surface is not None and rim and rim.get("guides"):
-        guides = np.asarray(rim["guides"], dtype=float)
-        surface = surface.with_guides(guides[:, 0], guides[:, 1])
     problem = Problem(
         NetLayout(m, n), mean_edge_length(f), weights,
         f0=against.f if against is not None else None,
         handle_ids=np.asarray(handles["ids"], dtype=np.int64) if handles else None,
         handle_targets=np.asarray(handles["targets"], dtype=float) if handles else None,
-        reference=surface,
+        reference=(ReferenceSurface.from_mesh(fit_surface(reference, net.extend))
+                   if reference is not None else None),
         boundary_ids=np.asarray(rim["ids"], dtype=np.int64) if rim else None,
     )
     norms = problem.residual_norms(f)

@@ -145,10 +145,12 @@ def optimize_net(
         # exactly developable, say): project onto the hard constraints from here, soft terms
         # off, so that the result is the nearby net that meets them (guided projection's
         # damping keeps it close).
-        # the pulling terms fade out while a schedule such as fairness 0.01->0 runs again (it
-        # regularizes the first steps; alone it would drag the net, unopposed)
-        settled = {**weights, **{name: Schedule(weights[name].end, 0.0) for name in pulling}}
-        hard_only = Problem(layout, problem.scale, settled,
+        # where a schedule such as fairness 0.01->0 runs again (it regularizes the first steps)
+        # the pulling terms fade out with it: alone it would drag the net, unopposed
+        again = any(w.start != w.end for w in weights.values())
+        hard_weights = {**weights, **{name: Schedule(weights[name].end, 0.0) if again
+                                      else Schedule.constant(0.0) for name in pulling}}
+        hard_only = Problem(layout, problem.scale, hard_weights,
                             problem.f0, handle_ids, handle_targets, reference, problem.soft,
                             boundary_ids)
         log.info("projecting onto the hard constraints without %s", ", ".join(pulling))
