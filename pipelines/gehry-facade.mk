@@ -15,10 +15,10 @@ $(GEHRY)/base.json: samples/profiles/gehry.csv
 
 $(GEHRY)/facade-%.json: $(GEHRY)/base.json samples/handles/gehry-%-$(GEHRY_M)x$(GEHRY_N).json
 	$(DGPC) optimize $(basename $<) --mode isometric --handles $(word 2,$^) --steps 5 \
-	    -o $(basename $@) --force
+	    $(DRAG_TOL) -o $(basename $@) --force
 
 $(GEHRY)/mold.json: $(GEHRY_DEF)
-	$(DGPC) extract-mold $(basename $^) --panel-size 2 -o $(basename $@) --force
+	$(DGPC) extract-mold $(basename $^) --panel-size 2 --max-strain $(MAX_STRAIN) -o $(basename $@) --force
 
 $(GEHRY)/strips.json: $(GEHRY)/facade-1.json
 	$(DGPC) planarize-strips $(basename $<) -o $(basename $@) --force

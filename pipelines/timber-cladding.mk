@@ -14,7 +14,7 @@ $(WALL)/base.json: samples/profiles/wall.csv
 
 $(WALL)/wall.json: $(WALL)/base.json samples/handles/wall-$(WALL_M)x$(WALL_N).json
 	$(DGPC) optimize $(basename $<) --mode isometric --handles $(word 2,$^) --steps 5 \
-	    -o $(basename $@) --force
+	    $(DRAG_TOL) -o $(basename $@) --force
 
 $(WALL)/strips.json: $(WALL)/wall.json
 	$(DGPC) planarize-strips $(basename $<) -o $(basename $@) --force

@@ -10,7 +10,16 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "golden"))
 
-from pipelines import FLOOR, GOLDEN, SIZES, collect, coord_tol, rel_tol, run  # noqa: E402
+from pipelines import (  # noqa: E402
+    FLOOR,
+    GOLDEN,
+    SIZES,
+    collect,
+    coord_tol,
+    make_args,
+    rel_tol,
+    run,
+)
 
 
 @pytest.mark.parametrize("name", list(SIZES))
@@ -37,11 +46,9 @@ def _planned(name, out):
     import os
     import subprocess
 
-    rows, cols = SIZES[name]
     env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
     text = subprocess.run(["make", "-n", "-o", ".venv/.installed", f"pipeline-{name}",
-                           f"OUT={out}", f"ROWS={rows}", f"COLS={cols}",
-                           f"BIN={Path(sys.executable).parent}"],
+                           *make_args(name, out)],
                           cwd=Path(__file__).resolve().parents[1], check=True, env=env,
                           capture_output=True, text=True).stdout
     return [line.split()[2] for line in text.splitlines() if "/dgpc -q " in line]

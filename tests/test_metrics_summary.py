@@ -17,7 +17,7 @@ def sphere_net(R=2.0, m=21, n=15):
 
 BASE_KEYS = {"shape", "gpc_angle_defect_max", "orthogonality_max", "arclength_spread_max",
              "strip_width_spread_max", "ratio_spread_max", "jacobi_residual_max", "edges",
-             "gaussian_curvature"}
+             "gaussian_curvature", "u_spread_max", "pleat_max", "parallel_departure"}
 
 
 def test_plain_metrics_of_a_meridian_net():
@@ -32,6 +32,9 @@ def test_plain_metrics_of_a_meridian_net():
     assert res["strip_width_spread_max"] <= 1e-12
     assert res["ratio_spread_max"] <= 1e-12
     assert res["jacobi_residual_max"] > 1e-3          # a sphere is not developable
+    assert res["u_spread_max"] <= 1e-12               # congruent meridian strips
+    assert res["pleat_max"] <= 1e-3                   # smooth: a fourth difference
+    assert res["parallel_departure"]["relative"] <= 1e-12    # parallels are circles
     assert set(res["edges"]) == {"min", "mean", "max", "min_ratio", "folded"}
     assert res["edges"]["folded"] is False
     K = res["gaussian_curvature"]

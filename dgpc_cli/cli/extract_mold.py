@@ -17,8 +17,9 @@ from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.mold.dxf import UNIT_MM
 from dgpc_cli.stages.extract_mold import (
     DEFAULT_FLAT_TOL,
+    DEFAULT_MAX_STRAIN,
     DEFAULT_PANEL_SIZE,
-    DEFAULT_TOL,
+    DEFAULT_TOL_FACTOR,
     extract_mold,
 )
 
@@ -39,16 +40,20 @@ log = logging.getLogger(__name__)
               help="A panel is flat (no mold) where |K|·l² = |δ_uu w / w| ≤ T on all of it.")
 @click.option("--mold-max-length", type=click.FloatRange(min=0, min_open=True), default=None,
               help="Longest mold piece along the meridian (net units) [default: no limit].")
-@click.option("--tol", type=click.FloatRange(min=0, min_open=True), default=DEFAULT_TOL,
-              show_default=True,
-              help="Relative tolerance of equation (5) and of the comparison between nets.")
+@click.option("--tol", type=click.FloatRange(min=0, min_open=True), default=None,
+              help="Relative tolerance of equation (5) and of the comparison between nets "
+                   "[default: twice --max-strain].")
+@click.option("--max-strain", type=click.FloatRange(min=0, min_open=True),
+              default=DEFAULT_MAX_STRAIN, show_default=True,
+              help="Largest relative difference of a panel's edges and diagonals from its "
+                   "mold patch; a net with a panel further off is refused.")
 @click.option("--unit", type=click.Choice(list(UNIT_MM)), default="mm", show_default=True,
               help="Length unit of the nets (the profile DXF is written in mm).")
 @output_opt
 @force_opt
 @format_opt
-def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length, tol, unit,
-                     output, force, fmt):
+def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length, tol,
+                     max_strain, unit, output, force, fmt):
     """Extract the surface of revolution that the nets NET… are isometric to (paper §4.2.2).
 
     Writes the mold artifact -o MOLD: MOLD.json, MOLD.obj (the surface of revolution and one
@@ -59,13 +64,15 @@ def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length,
     """
     if segments is not None and lam is not None:
         raise click.UsageError("--segments and --lambda are mutually exclusive")
+    if tol is None:
+        tol = DEFAULT_TOL_FACTOR * max_strain
     paths = mold_paths(output)
     check_writable(output, force, *(paths[k] for k in ("profile_csv", "profile_dxf",
                                                         "panels_csv")))
     loaded = [(str(artifact_paths(stem)[0]), read_net(stem)) for stem in nets]
     mold = extract_mold([(name, net.f) for name, net in loaded], segments=segments, lam=lam,
                         panel_size=panel_size, flat_tol=flat_tol, max_length=mold_max_length,
-                        tol=tol)
+                        tol=tol, max_strain=max_strain)
     folder = paths["json"].resolve().parent
     inputs = {f"net{k + 1}": file_input(name, folder) for k, (name, _) in enumerate(loaded)}
     mer = mold.meridian
@@ -89,7 +96,7 @@ def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length,
         inputs=inputs,
         parameters={"segments": segments, "lambda": lam, "panel_size": panel_size,
                     "flat_tol": flat_tol, "mold_max_length": mold_max_length, "tol": tol,
-                    "unit": unit},
+                    "max_strain": max_strain, "unit": unit},
         metrics=metrics,
         status={"state": "ok", "lambda_lowered": mer.lowered, "message": message},
     )

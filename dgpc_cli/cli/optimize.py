@@ -20,8 +20,8 @@ from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import NetArtifact, net_files, read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.stages.inspect import summarize
-from dgpc_cli.stages.modes import MODES, SOFT, describe_weights, mode_weights
-from dgpc_cli.stages.optimize import boundary_vertices, optimize_net
+from dgpc_cli.stages.modes import MODES, RELAX, SOFT, describe_weights, mode_weights
+from dgpc_cli.stages.optimize import boundary_vertices, judge, optimize_net
 from dgpc_cli.tolerances import tol as TOL
 
 log = logging.getLogger(__name__)
@@ -62,18 +62,28 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
 @click.option("--tol", type=click.FloatRange(min=0, min_open=True), default=TOL.solver_R,
               show_default=True, help="Tolerance on the residual of the hard constraints "
                                       "(net scaled to mean edge length 1).")
+@click.option("--max-strain", type=click.FloatRange(min=0, min_open=True),
+              default=TOL.max_strain, show_default=True,
+              help="revolution: largest relative error of a quad's edges and diagonals against "
+                   "the surface of revolution; isometric: largest strain |λ1|+|λ2| against the "
+                   "input (§6.1); above it the net is not converged (3e-4: 0.3 mm per metre).")
+@click.option("--gpc-tol", type=click.FloatRange(min=0, min_open=True), default=TOL.gpc_tol,
+              show_default=True,
+              help="isometric: largest angle defect of (6), radians, that counts as converged.")
 @click.option("--solver", "backend", type=click.Choice(["auto", *BACKENDS]), default="auto",
               show_default=True, help="Sparse linear solver of the normal equations.")
 @output_opt
 @force_opt
 @format_opt
 @click.pass_context
-def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol, backend,
-             output, force, fmt):
+def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol, max_strain,
+             gpc_tol, backend, output, force, fmt):
     """Optimize the net STEM with guided projection (paper §5) and write it to -o STEM2.
 
-    Exit code 3 if the last step does not reach --tol (the artifact is still written, with
-    its status).
+    Exit code 3 if the last step does not reach --tol, if the net is pleated, in revolution
+    mode if a quad is further than --max-strain from the surface of revolution, or, in
+    isometric mode, if its strain or gpc angle defect is above --max-strain or --gpc-tol (the
+    artifact is still written, with its status).
     """
     try:
         schedules = mode_weights(mode, weights)
@@ -105,7 +115,8 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
         outcome = optimize_net(
             net.f, schedules, reference=surface, boundary_ids=rim,
             handle_ids=handle_ids, handle_targets=handle_targets, soft=SOFT[mode], steps=steps,
-            max_iter=max_iter, tol=tol, backend=backend, progress=progress)
+            max_iter=max_iter, tol=tol, backend=backend, progress=progress,
+            relax=RELAX.get(mode))
         bar.update(steps * max_iter - last[0])
 
     out_json, _ = artifact_paths(output)
@@ -123,10 +134,14 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
         data["boundary"] = {"ids": rim.tolist()}
     result = NetArtifact(
         f=outcome.f,
-        parameters={"mode": mode, "weights": describe_weights(schedules), "steps": steps,
-                    "max_iter": max_iter, "tol": tol, "solver": backend,
+        parameters={"mode": mode, "weights": describe_weights(schedules),
+                    "soft": list(SOFT[mode]), "steps": steps, "max_iter": max_iter, "tol": tol,
+                    "max_strain": max_strain, "gpc_tol": gpc_tol, "solver": backend,
                     **net.reference_parameters()},
-        inputs=inputs, data=data, status=outcome.record())
+        inputs=inputs, data=data)
+    outcome.status, outcome.message = judge(outcome, net.f, mode=mode,
+                                            max_strain=max_strain, gpc_tol=gpc_tol)
+    result.status = outcome.record()
     result.metrics = summarize(result, mesh=mesh,
                                against=net if mode == "isometric" else None)
     write_files(with_3dm(net_files(output, result), output, fmt), force=force)
@@ -134,5 +149,5 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
     log.info("%s: %s, %d iterations, R = %.3g", out_json, outcome.status, outcome.iterations,
              result.metrics["R"])
     if not outcome.converged:
-        raise NotConverged(f"did not reach the tolerance: {outcome.message}; written anyway",
-                           source=out_json)
+        raise NotConverged(f"{outcome.status.replace('_', ' ')}: {outcome.message}; written "
+                           "anyway", source=out_json)
