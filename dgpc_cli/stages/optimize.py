@@ -52,6 +52,12 @@ class OptimizeOutcome:
         }
 
 
+#: A drag's intermediate handle step only has to bring the net close enough to carry on: at
+#: most STEP_MAX_ITER iterations, done at a hard residual of STEP_TOL or when the objective falls
+#: by less than 1 − STEP_RATIO over STEP_WINDOW iterations; its last step stops on that ratio
+#: over LAST_WINDOW iterations (the solver's defaults, 0.999 over 20, hold without handles).
+STEP_MAX_ITER, STEP_TOL, STEP_WINDOW, STEP_RATIO, LAST_WINDOW = 10, 1e-4, 5, 0.99, 10
+
 #: Net boundary vertices closer than this fraction of the mean edge length to the reference's
 #: boundary start on it; the ``boundary`` term keeps them there.
 BOUNDARY_SNAP = 0.05
@@ -130,9 +136,10 @@ def optimize_net(
             if progress is not None:
                 progress(_base + k, record)
 
-        result = guided_projection(x, problem.terms(targets), max_iter=max_iter, tol=tol,
-                                   backend=backend, workspace=workspace,
-                                   retract=layout.orient_edges, callback=step_progress)
+        result = guided_projection(x, problem.terms(targets), backend=backend,
+                                   workspace=workspace, retract=layout.orient_edges,
+                                   callback=step_progress,
+                                   **_step_limits(s, steps, start is not None, max_iter, tol))
         log.info("step %d/%d: %s after %d iterations (%s)", s, steps, result.status,
                  result.iterations, result.message)
         workspace, x = result.workspace, result.x
@@ -145,7 +152,7 @@ def optimize_net(
             x = result.x
             results.append(result)
             total += result.iterations
-    last = results[-1]
+    last = [r for r in results if r.status != "rejected"][-1]
     pulling = [t.name for t in problem.terms()
                if (not t.hard or t.regularizer) and t.weight.end > 0]
     if not last.success and pulling:
@@ -165,7 +172,7 @@ def optimize_net(
         results.append(result)
     f_out = problem.vertices(x)
     norms = problem.residual_norms(f_out)
-    last = results[-1]
+    last = [r for r in results if r.status != "rejected"][-1]
     return OptimizeOutcome(f=f_out, status=last.status, message=last.message, steps=results,
                            residuals=norms, R=constraint_error(norms, weights, problem.soft))
 
@@ -174,7 +181,18 @@ def optimize_net(
 #: round of at most RELAX_ITER iterations each, while the largest strain against the input falls
 #: by at least RELAX_GAIN per round and the pleat measure stays below half its tolerance (the
 #: last round, without it, reaches an exact isometric deformation where there is one).
-RELAX_FRACTIONS, RELAX_ITER, RELAX_GAIN = (1e-1, 1e-2, 1e-3, 0.0), 60, 0.9
+RELAX_FRACTIONS, RELAX_ITER, RELAX_GAIN = (1e-1, 1e-2, 1e-3, 0.0), 30, 0.9
+
+
+def _step_limits(s: int, steps: int, drag: bool, max_iter: int, tol: float) -> dict:
+    """Stopping rules of handle step ``s`` of ``steps`` (see ``STEP_MAX_ITER``)."""
+    if not drag:
+        return {"max_iter": max_iter, "tol": tol}
+    if s < steps:
+        return {"max_iter": min(max_iter, STEP_MAX_ITER), "tol": max(tol, STEP_TOL),
+                "stagnation_window": STEP_WINDOW, "stagnation_ratio": STEP_RATIO}
+    return {"max_iter": max_iter, "tol": tol, "stagnation_window": LAST_WINDOW,
+            "stagnation_ratio": STEP_RATIO}
 
 
 def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targets, *,
@@ -182,7 +200,8 @@ def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targ
     """Lower the weight of the regularizer ``name`` (the drag's smoothness) as the net settles,
     but never to a pleat: an isometric drag is a weighing of (6) against the edge lengths, and
     the less the smoothness weighs, the smaller the strain — until the net starts to pleat
-    (their exact solutions). Returns the accepted rounds' solver results (possibly none)."""
+    (their exact solutions). Returns the rounds' solver results; a round that did not help has
+    status ``rejected`` and the net it started from as its ``x``."""
     def measure(xv):
         g = problem.vertices(xv)
         corrugation = pleat(g)
@@ -191,7 +210,9 @@ def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targ
 
     best, _ = measure(x)
     accepted = []
-    for fraction in RELAX_FRACTIONS:
+    fractions = list(RELAX_FRACTIONS)
+    while fractions:
+        fraction = fractions.pop(0)
         weight = fraction * problem.weights[name].end
         lowered = Problem(problem.layout, problem.scale,
                           {**problem.weights, name: Schedule.constant(weight)}, problem.f0,
@@ -205,7 +226,12 @@ def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targ
                  corrugation, result.iterations)
         if not (np.isfinite(worst) and worst <= RELAX_GAIN * best
                 and corrugation <= 0.5 * TOL.pleat):
-            break
+            result.status, result.x = "rejected", x      # its work counts, its net does not
+            accepted.append(result)
+            # no gain at this weight: one last try without it (an exact isometric deformation
+            # is reached there when one exists; a pleat is refused)
+            fractions = [0.0] if fraction > 0 else []
+            continue
         best, x = worst, result.x
         accepted.append(result)
     return accepted
