@@ -111,6 +111,32 @@ def test_profile_and_panel_csv(mold):
     assert float(first[9]) == pytest.approx(panel["isometry_error"], rel=1e-3)
 
 
+def test_panels_obj_groups_the_net_by_panel_id(mold):
+    """MOLD.panels.obj: the input net, its faces grouped by panel id (a facade model shows
+    which panel is which)."""
+    from dgpc_cli.io.net import read_net
+
+    doc = doc_of(mold)
+    f = read_net(mold.parent / "g").f
+    lines = (mold.parent / "mold.panels.obj").read_text().splitlines()
+    assert [x for x in lines if x.startswith("o ")] == ["o net1"]
+    verts = np.array([[float(v) for v in x.split()[1:]] for x in lines if x.startswith("v ")])
+    assert np.array_equal(verts, f.reshape(-1, 3))
+    groups, faces = {}, None
+    for x in lines:
+        if x.startswith("g "):
+            faces = groups.setdefault(x[2:], [])
+        elif x.startswith("f "):
+            faces.append([int(i) - 1 for i in x.split()[1:]])
+    panels = doc["data"]["panels"]
+    assert list(groups) == [p["id"] for p in panels]
+    n = f.shape[1]
+    for p in panels:
+        (r0, r1), (c0, c1) = p["rows"], p["cols"]
+        corners = {(i // n, i % n) for face in groups[p["id"]] for i in face}
+        assert corners == {(u, v) for u in range(r0, r1 + 1) for v in range(c0, c1 + 1)}
+
+
 def test_reading_detects_edited_and_missing_files(mold, tmp_path):
     for name in mold.parent.iterdir():
         if name.name.startswith("mold"):

@@ -76,9 +76,10 @@ def cells(A: np.ndarray, B: np.ndarray) -> list[np.ndarray]:
 
 
 def largest_height(cell: np.ndarray, center: np.ndarray, text: str, rotation: float) -> float:
-    """The largest height of ``text`` centred at ``center`` turned by ``rotation`` whose box,
-    with its clearance, lies within every side's half plane of the ccw polygon ``cell``."""
+    """The largest height of ``text`` turned by ``rotation`` whose box, centred at ``center``
+    and with its clearance, lies within every side's half plane of the ccw polygon ``cell``."""
     q = text_box(text, 1.0, (0.0, 0.0), rotation)                  # box at unit height
+    q = q - q.mean(axis=0)                                          # ... centred
     edges = np.roll(cell, -1, axis=0) - cell
     normals = np.column_stack([edges[:, 1], -edges[:, 0]])          # outward for ccw
     lengths = np.linalg.norm(normals, axis=1)
@@ -105,7 +106,9 @@ def _inside(text: str, quads: list[np.ndarray], middle: int) -> Label | None:
             h = min(largest_height(q, center, text, rotation), MAX_TEXT_MM)
             key = (round(h, 9), -abs(u - middle))
             if h >= MIN_TEXT_MM and (best is None or key > best[0]):
-                best = (key, Label(text, (float(center[0]), float(center[1])), h, rotation))
+                # the text's point so that its box is centred on the cell's centroid
+                at = center - text_box(text, h, (0.0, 0.0), rotation).mean(axis=0)
+                best = (key, Label(text, (float(at[0]), float(at[1])), h, rotation))
     return None if best is None else best[1]
 
 
