@@ -3,11 +3,13 @@
 A developed strip is a row of cells, the quads ``A_u A_(u+1) B_(u+1) B_u`` between its rulings
 (the score lines) and its outline. A label is a text box (:func:`dgpc_cli.io.dxf.text_box`)
 inside one cell, at least :data:`CLEARANCE_MM` plus :data:`CLEARANCE_H` of its height away from
-the cell's sides, so it crosses no cut or score line. Its height is the largest that fits,
-capped at :data:`MAX_TEXT_MM`; the text runs along the strip or across it, whichever allows the
-larger height, and always reads upright. A cell's largest box is exact for a convex cell (the
-box's corners against every side's half plane; a non-convex cell gets the box within all of
-its sides' half planes, which lies inside it).
+the cell's sides, so it crosses no cut or score line. It goes into the cell nearest the part's
+middle that allows nearly (:data:`NEAR_BEST`) the largest height any cell allows, with the
+largest height that cell allows, capped at :data:`MAX_TEXT_MM`; the text runs along the strip,
+or across it where that allows twice the height (:data:`ACROSS`), and always reads upright. A
+cell's largest box is exact for a convex cell (the box's corners against every side's half
+plane; a non-convex cell gets the box within all of its sides' half planes, which lies inside
+it).
 
 When no cell holds the id at :data:`MIN_TEXT_MM`, the short id (the id without ``S-v``) is
 tried; when that does not fit either, the short id goes beside the part, at the minimum
@@ -30,6 +32,12 @@ from ..io.dxf import text_box
 MIN_TEXT_MM = 3.0
 #: Largest text height of a label (mm).
 MAX_TEXT_MM = 50.0
+#: A label goes to the cell nearest the middle of its part that allows this fraction of the
+#: largest height any cell allows.
+NEAR_BEST = 0.9
+#: A label runs across its strip only where that allows a height more than 1/ACROSS times the
+#: height along it.
+ACROSS = 0.5
 #: Free space around a label's box: this much (mm) plus this fraction of its height.
 CLEARANCE_MM, CLEARANCE_H = 0.5, 0.1
 #: Candidate directions and steps (× the text height) of a label beside its part.
@@ -95,21 +103,26 @@ def largest_height(cell: np.ndarray, center: np.ndarray, text: str, rotation: fl
 
 
 def _inside(text: str, quads: list[np.ndarray], middle: int) -> Label | None:
-    """The largest label of ``text`` inside one of the cells ``quads`` (ties: the cell nearest
-    the ``middle`` one), or None when none reaches the minimum height."""
-    best = None
+    """A label of ``text`` inside one of the cells ``quads``: of the cells that allow at least
+    :data:`NEAR_BEST` of the largest height, the one nearest the ``middle`` one; None when no
+    cell allows the minimum height."""
+    options = []
     for u, q in enumerate(quads):
         axis = 0.5 * (q[1] + q[2]) - 0.5 * (q[0] + q[3])
         along = np.degrees(np.arctan2(axis[1], axis[0]))
         center = np.asarray(Polygon(q).centroid.coords[0])
-        for rotation in (upright(along), upright(along + 90.0)):
+        for rotation, weight in ((upright(along), 1.0), (upright(along + 90.0), ACROSS)):
             h = min(largest_height(q, center, text, rotation), MAX_TEXT_MM)
-            key = (round(h, 9), -abs(u - middle))
-            if h >= MIN_TEXT_MM and (best is None or key > best[0]):
-                # the text's point so that its box is centred on the cell's centroid
-                at = center - text_box(text, h, (0.0, 0.0), rotation).mean(axis=0)
-                best = (key, Label(text, (float(at[0]), float(at[1])), h, rotation))
-    return None if best is None else best[1]
+            if h >= MIN_TEXT_MM:
+                options.append((weight * h, -abs(u - middle), u, h, rotation, center))
+    if not options:
+        return None
+    best = max(o[0] for o in options)
+    _, _, _, h, rotation, center = max((o for o in options if o[0] >= NEAR_BEST * best),
+                                       key=lambda o: (o[1], o[0], -o[2]))
+    # the text's point so that its box is centred on the cell's centroid
+    at = center - text_box(text, h, (0.0, 0.0), rotation).mean(axis=0)
+    return Label(text, (float(at[0]), float(at[1])), h, rotation)
 
 
 def _with_leader(text: str, at, h: float, anchor: np.ndarray) -> Label:
