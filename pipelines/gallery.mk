@@ -11,7 +11,7 @@ gallery_span    = $(if $(filter wall,$(1)),60,90)
 
 $(GALLERY)/%-base.json: samples/profiles/wall.csv
 	@mkdir -p $(@D)
-	$(DGPC) init --surface revolution --profile $(call gallery_profile,$*) \
+	$(DGPC) init --surface revolution --profile $(call gallery_profile,$*) --units m \
 	    --rows $(GALLERY_M) --cols $(GALLERY_N) --span $(call gallery_span,$*) \
 	    -o $(basename $@) --force
 

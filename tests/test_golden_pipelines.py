@@ -23,9 +23,9 @@ from pipelines import (  # noqa: E402
 
 
 @pytest.mark.parametrize("name", list(SIZES))
-def test_pipeline_matches_golden(tmp_path, name):
+def test_pipeline_matches_golden(pipeline_run, name):
     want = json.loads((GOLDEN / f"{name}.json").read_text())
-    got = collect(name, run(name, tmp_path))
+    got = collect(name, pipeline_run(name))
     assert got["size"] == want["size"]
     assert got["metrics"].keys() == want["metrics"].keys()
     for key, w in want["metrics"].items():

@@ -207,7 +207,7 @@ def test_flat_tol_and_panel_size_change_the_map(tmp_path):
     assert b["metrics"]["panels_curved"] == 0 and b["metrics"]["pieces"] == 0
     assert a["parameters"] == {"segments": None, "lambda": None, "panel_size": 1,
                                "flat_tol": 1e-5, "mold_max_length": None, "tol": 6e-4,
-                               "max_strain": 3e-4, "unit": "mm"}
+                               "max_strain": 3e-4, "units": "mm"}
 
 
 def test_mold_max_length_shorter_than_a_panel_is_an_error(tmp_path):

@@ -8,13 +8,21 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
+from dgpc_cli.cli.options import (
+    check_units,
+    check_writable,
+    force_opt,
+    format_opt,
+    output_opt,
+    units_check_opt,
+)
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.mold import mold_files, mold_paths
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
-from dgpc_cli.mold.dxf import UNIT_MM
+from dgpc_cli.io.units import same_units
+from dgpc_cli.mold.dxf import profile_dxf
 from dgpc_cli.stages.extract_mold import (
     DEFAULT_FLAT_TOL,
     DEFAULT_MAX_STRAIN,
@@ -47,13 +55,12 @@ log = logging.getLogger(__name__)
               default=DEFAULT_MAX_STRAIN, show_default=True,
               help="Largest relative difference of a panel's edges and diagonals from its "
                    "mold patch; a net with a panel further off is refused.")
-@click.option("--unit", type=click.Choice(list(UNIT_MM)), default="mm", show_default=True,
-              help="Length unit of the nets (the profile DXF is written in mm).")
+@units_check_opt
 @output_opt
 @force_opt
 @format_opt
 def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length, tol,
-                     max_strain, unit, output, force, fmt):
+                     max_strain, units_check, output, force, fmt):
     """Extract the surface of revolution that the nets NET… are isometric to (paper §4.2.2).
 
     Writes the mold artifact -o MOLD: MOLD.json, MOLD.obj (the surface of revolution and one
@@ -68,8 +75,10 @@ def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length,
         tol = DEFAULT_TOL_FACTOR * max_strain
     paths = mold_paths(output)
     check_writable(output, force, *(paths[k] for k in ("profile_csv", "profile_dxf",
-                                                        "panels_csv")))
+                                                        "panels_csv", "panels_obj")))
     loaded = [(str(artifact_paths(stem)[0]), read_net(stem)) for stem in nets]
+    unit = same_units([(name, net.units) for name, net in loaded])
+    check_units(units_check, unit, loaded[0][0])
     mold = extract_mold([(name, net.f) for name, net in loaded], segments=segments, lam=lam,
                         panel_size=panel_size, flat_tol=flat_tol, max_length=mold_max_length,
                         tol=tol, max_strain=max_strain)
@@ -82,7 +91,9 @@ def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length,
     files = mold_files(
         output,
         profile={"r": mer.r, "h": mer.h, "d": mer.d, "l": mer.l, "x": mer.x},
-        unit=unit,
+        units=unit,
+        profile_dxf=profile_dxf(mer.r, mer.h, unit, [(p.id, p.start, p.stop)
+                                                     for p in mold.pieces]),
         segments={"segments": mer.segments, "segments_requested": mer.requested,
                   "lambda": mer.lam, "lambda_lowered": mer.lowered},
         sector_deg=math.degrees(mold.sector_angle),
@@ -91,12 +102,13 @@ def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length,
         nets=[{"input": f"net{k + 1}", "shape": list(p.shape),
                "column_angles_deg": [math.degrees(t) for t in p.theta.tolist()],
                "revolution_residual_max": p.residual_max} for k, p in enumerate(mold.nets)],
+        net_geometry=[net.f for _, net in loaded],
         panels=mold.panel_records(),
         panel_size=panel_size,
         inputs=inputs,
         parameters={"segments": segments, "lambda": lam, "panel_size": panel_size,
                     "flat_tol": flat_tol, "mold_max_length": mold_max_length, "tol": tol,
-                    "max_strain": max_strain, "unit": unit},
+                    "max_strain": max_strain, "units": unit},
         metrics=metrics,
         status={"state": "ok", "lambda_lowered": mer.lowered, "message": message},
     )

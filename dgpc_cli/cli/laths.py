@@ -15,6 +15,7 @@ from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.laths import laths_files
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
+from dgpc_cli.io.units import same_units
 from dgpc_cli.stages.laths import GAP, gridshell
 
 log = logging.getLogger(__name__)
@@ -49,6 +50,8 @@ def laths(net_a, net_b, gap, output, force, fmt):
             if p.exists():
                 raise DgpcError("already exists; use --force to overwrite", source=p)
     a, b = read_net(net_a), read_net(net_b)
+    units = same_units([(str(artifact_paths(net_a)[0]), a.units),
+                        (str(artifact_paths(net_b)[0]), b.units)])
     ref_a, ref_b = a.data.get("reference"), b.data.get("reference")
     if ref_a and ref_b and ref_a.get("sha256") != ref_b.get("sha256"):
         log.warning("%s and %s record different references", net_a, net_b)
@@ -64,7 +67,7 @@ def laths(net_a, net_b, gap, output, force, fmt):
     metrics = {"laths": len(all_laths), "crossings": int(len(crossings.a)),
                "crossing_gap_max": float(crossings.gap.max()),
                "length_total": float(lengths.sum()), "length_max": float(lengths.max())}
-    files = laths_files(output, all_laths, crossings, inputs=inputs,
+    files = laths_files(output, all_laths, crossings, units=units, inputs=inputs,
                         parameters={"gap": gap}, metrics=metrics)
     write_files(with_3dm(files, output, fmt), force=force)
     log.info("%d laths, %d crossings, largest gap %.3g", len(all_laths), len(crossings.a),

@@ -19,6 +19,7 @@ from dgpc_cli.io.handles import read_handles
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import NetArtifact, net_files, read_net
 from dgpc_cli.io.rhino import with_3dm
+from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.stages.inspect import summarize
 from dgpc_cli.stages.modes import MODES, RELAX, SOFT, describe_weights, mode_weights
 from dgpc_cli.stages.optimize import boundary_vertices, judge, optimize_net
@@ -94,8 +95,9 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
     net = read_net(stem)
     mesh = _reference(net, json_path, reference, mode)
     handle_ids = handle_targets = None
+    mm = mm_per_unit(net.units)      # the stages compute in mm (dgpc_cli.io.units)
     if handles is not None:
-        handle_ids, handle_targets = read_handles(handles, net.shape, net.f)
+        handle_ids, handle_targets = read_handles(handles, net.shape, net.f_mm, scale=mm)
     if mode == "isometric" and handle_ids is None:
         raise DgpcError("--mode isometric needs --handles", source="--handles")
 
@@ -106,14 +108,14 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
             bar.update(k + 1 - last[0])
             last[0] = k + 1
 
-        surface = (ReferenceSurface.from_mesh(fit_surface(mesh, net.extend))
-                   if mesh is not None else None)
+        fit = fit_surface(mesh, net.extend) if mesh is not None else None
+        surface = ReferenceSurface(fit.vertices * mm, fit.faces) if fit is not None else None
         # a net that runs past its reference (init --extend) has no rim on its boundary
-        rim = (boundary_vertices(net.f, surface)
+        rim = (boundary_vertices(net.f_mm, surface)
                if surface is not None and not net.extend
                and schedules.get("boundary", Schedule.constant(0)).end > 0 else None)
         outcome = optimize_net(
-            net.f, schedules, reference=surface, boundary_ids=rim,
+            net.f_mm, schedules, reference=surface, boundary_ids=rim,
             handle_ids=handle_ids, handle_targets=handle_targets, soft=SOFT[mode], steps=steps,
             max_iter=max_iter, tol=tol, backend=backend, progress=progress,
             relax=RELAX.get(mode))
@@ -129,17 +131,17 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
         inputs["reference"] = data["reference"] = file_input(mesh.path, folder)
     if handle_ids is not None:
         inputs["handles"] = file_input(handles, folder)
-        data["handles"] = {"ids": handle_ids.tolist(), "targets": handle_targets.tolist()}
+        data["handles"] = {"ids": handle_ids.tolist(), "targets": (handle_targets / mm).tolist()}
     if rim is not None and len(rim):
         data["boundary"] = {"ids": rim.tolist()}
     result = NetArtifact(
-        f=outcome.f,
+        f=from_mm(outcome.f, net.units), units=net.units,
         parameters={"mode": mode, "weights": describe_weights(schedules),
                     "soft": list(SOFT[mode]), "steps": steps, "max_iter": max_iter, "tol": tol,
                     "max_strain": max_strain, "gpc_tol": gpc_tol, "solver": backend,
                     **net.reference_parameters()},
         inputs=inputs, data=data)
-    outcome.status, outcome.message = judge(outcome, net.f, mode=mode,
+    outcome.status, outcome.message = judge(outcome, net.f_mm, mode=mode,
                                             max_strain=max_strain, gpc_tol=gpc_tol)
     result.status = outcome.record()
     result.metrics = summarize(result, mesh=mesh,

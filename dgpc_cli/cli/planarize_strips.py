@@ -53,14 +53,16 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, output, force, fmt)
     m, n = net.shape
     columns = parse_strip_range(strip_range, n)
     with progressbar(ctx, len(columns), "planarize strips") as bar:
-        strips = planarize_strips(net.f, columns, flat_angle=flat_angle, progress=bar.update)
+        strips = [s.in_units(net.units) for s in
+                  planarize_strips(net.f_mm, columns, flat_angle=flat_angle,
+                                   progress=bar.update)]
     out_json, _ = artifact_paths(output)
     polished = [s for s in strips if s.polish.get("applied")]
     failed = [s.id for s in polished if s.polish.get("status") != "converged"]
     crossed = [s.id for s in strips if not s.rulings_ordered]
     art = StripsArtifact(
         geometry=[(s.A, s.B) for s in strips], records=[s.record() for s in strips],
-        source_shape=(m, n),
+        source_shape=(m, n), units=net.units,
         parameters={"strips": [columns[0], columns[-1]], "flat_angle": flat_angle,
                     "polish_above": POLISH_ABOVE},
         inputs={"net": file_input(json_path, out_json.resolve().parent)},

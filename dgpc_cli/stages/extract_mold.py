@@ -210,7 +210,7 @@ def inspect_mold(mold) -> dict:
     return {
         **mold.metrics,
         "profile": {"r": mold.data["profile"]["r"], "h": mold.data["profile"]["h"],
-                    "unit": mold.data["unit"]},
+                    "units": mold.data["units"]},
         "pieces": len(mold.data["pieces"]),
         "panels": len(panels),
         "panels_flat": flat,
