@@ -139,7 +139,8 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
                                             max_strain=max_strain, gpc_tol=gpc_tol)
     result.status = outcome.record()
     result.metrics = summarize(result, mesh=mesh,
-                               against=net if mode == "isometric" else None)
+                               against=net if mode == "isometric" else None,
+                               surface=surface.scaled(1.0 / mm) if surface is not None else None)
     write_files(with_3dm(net_files(output, result), output, fmt), force=force)
     click.echo(str(out_json))
     log.info("%s: %s, %d iterations, R = %.3g", out_json, outcome.status, outcome.iterations,
