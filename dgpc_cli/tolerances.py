@@ -15,6 +15,14 @@ class Tolerances:
     min_edge_ratio: float = 0.1
     #: Edge length below which an edge counts as degenerate (relative to the mean).
     degenerate_edge: float = 1e-9
+    #: Period-2 corrugation across the geodesics (× mean edge, ``metrics.residuals.pleat``)
+    #: above which a net is pleated (the pleats of the isometry study are 0.03 to 0.29; a smooth
+    #: net is a fifth difference: 1e-16 on a sphere net, 0.015 on a coarse 12×8 net of wave.obj).
+    pleat: float = 0.02
+    #: Largest strain against the mold (isometric mode, extract-mold): 0.3 mm per metre.
+    max_strain: float = 3e-4
+    #: Largest gpc angle defect of an isometric deformation, radians.
+    gpc_tol: float = 1e-4
 
 
 tol = Tolerances()

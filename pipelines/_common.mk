@@ -3,7 +3,13 @@
 # (each pipeline has its own defaults); DGPC: the command.
 OUT  ?= out
 DGPC ?= $(BIN)/dgpc -q
-PIPELINES := gehry-facade timber-cladding felt-developable bowling-pin-clairaut gridshell
+# Fabrication tolerances of the drags and molds (optimize --max-strain/--gpc-tol, extract-mold
+# --max-strain): 0.3 mm per metre by default; coarse nets (the golden tests' small versions)
+# are stiffer and reach less.
+MAX_STRAIN ?= 3e-4
+GPC_TOL    ?= 1e-4
+DRAG_TOL   := --max-strain $(MAX_STRAIN) --gpc-tol $(GPC_TOL)
+PIPELINES := gehry-facade timber-cladding felt-developable bowling-pin-clairaut gridshell gallery
 # $(call size,DEFAULT_ROWS,DEFAULT_COLS) -> ROWSxCOLS, ROWS/COLS overriding the defaults
 rows_or = $(if $(ROWS),$(ROWS),$(1))
 # Figures of an artifact: DIR/STEM-report-index.html (+ PNGs) from DIR/STEM.json.

@@ -11,14 +11,14 @@ GEHRY_DEF := $(foreach k,1 2 3 4,$(GEHRY)/facade-$(k).json)
 $(GEHRY)/base.json: samples/profiles/gehry.csv
 	@mkdir -p $(@D)
 	$(DGPC) init --surface revolution --profile $< --rows $(GEHRY_M) --cols $(GEHRY_N) \
-	    --span 90 -o $(basename $@) --force
+	    --span 90 --units m -o $(basename $@) --force
 
 $(GEHRY)/facade-%.json: $(GEHRY)/base.json samples/handles/gehry-%-$(GEHRY_M)x$(GEHRY_N).json
 	$(DGPC) optimize $(basename $<) --mode isometric --handles $(word 2,$^) --steps 5 \
-	    -o $(basename $@) --force
+	    $(DRAG_TOL) -o $(basename $@) --force
 
 $(GEHRY)/mold.json: $(GEHRY_DEF)
-	$(DGPC) extract-mold $(basename $^) --panel-size 2 -o $(basename $@) --force
+	$(DGPC) extract-mold $(basename $^) --panel-size 2 --max-strain $(MAX_STRAIN) -o $(basename $@) --force
 
 $(GEHRY)/strips.json: $(GEHRY)/facade-1.json
 	$(DGPC) planarize-strips $(basename $<) -o $(basename $@) --force
@@ -27,7 +27,7 @@ $(GEHRY)/flat.json: $(GEHRY)/strips.json
 	$(DGPC) unfold $(basename $<) -o $(basename $@) --force
 
 $(GEHRY)/sheets.json: $(GEHRY)/flat.json $(GEHRY)/mold.json
-	$(DGPC) nest $(basename $<) --mold $(basename $(word 2,$^)) --units m \
+	$(DGPC) nest $(basename $<) --mold $(basename $(word 2,$^)) \
 	    --sheet $(GEHRY_SHEET) -o $(basename $@) --force
 
 .PHONY: pipeline-gehry-facade

@@ -10,11 +10,11 @@ WALL_SHEET := 6100x2500
 $(WALL)/base.json: samples/profiles/wall.csv
 	@mkdir -p $(@D)
 	$(DGPC) init --surface revolution --profile $< --rows $(WALL_M) --cols $(WALL_N) \
-	    --span 60 -o $(basename $@) --force
+	    --span 60 --units m -o $(basename $@) --force
 
 $(WALL)/wall.json: $(WALL)/base.json samples/handles/wall-$(WALL_M)x$(WALL_N).json
 	$(DGPC) optimize $(basename $<) --mode isometric --handles $(word 2,$^) --steps 5 \
-	    -o $(basename $@) --force
+	    $(DRAG_TOL) -o $(basename $@) --force
 
 $(WALL)/strips.json: $(WALL)/wall.json
 	$(DGPC) planarize-strips $(basename $<) -o $(basename $@) --force
@@ -23,7 +23,7 @@ $(WALL)/flat.json: $(WALL)/strips.json
 	$(DGPC) unfold $(basename $<) -o $(basename $@) --force
 
 $(WALL)/sheets.json: $(WALL)/flat.json
-	$(DGPC) nest $(basename $<) --units m --sheet $(WALL_SHEET) -o $(basename $@) --force
+	$(DGPC) nest $(basename $<) --sheet $(WALL_SHEET) -o $(basename $@) --force
 
 .PHONY: pipeline-timber-cladding
 pipeline-timber-cladding: setup $(WALL)/sheets.json $(WALL)/flat-report-index.html ## Timber cladding: congruent strips, DXF cut sheets (Fig. 2, 18).

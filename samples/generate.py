@@ -5,10 +5,14 @@ Run from the repository root: ``.venv/bin/python samples/generate.py``. It write
 
 - ``profiles/gehry.csv``: a Gehry-type profile with a cylindrical section (paper Fig. 1, 16).
 - ``profiles/wall.csv``: the gently waving profile behind the timber wall (paper Fig. 2, 18).
-- ``handles/gehry-K-MxN.json`` (K = 1..4) and ``handles/wall-MxN.json``: handle targets of
-  ``dgpc optimize --mode isometric``, from an exact isometric bending (Minding, Prop. 4.3) of the
-  meridian net that ``dgpc init --surface revolution --profile samples/profiles/NAME.csv
-  --rows M --cols N --span SPAN`` makes, followed by a rigid motion (so the deformation exists).
+- ``handles/gehry-K-MxN.json`` (K = 1..4), ``handles/wall-MxN.json`` and
+  ``handles/gallery-NAME-MxN.json`` (six surfaces of revolution, paper Fig. 19): handles of
+  ``dgpc optimize --mode isometric`` as a designer drags them on the meridian net that
+  ``dgpc init --surface revolution --profile PROFILE --rows M --cols N --span SPAN`` makes:
+  two corners of one end row held, the two corners of the other end row pushed away from the
+  axis and towards it (``HANDLE_SETS``: a fraction of their radius). The nets this twists are
+  freeform (their parallels are no circles) and stay isometric to the surface of revolution
+  within 3e-4 (one mold for the four Gehry-type patches).
 - ``meshes/felt.obj``: a nearly developable bent sheet (paper Fig. 8).
 - ``meshes/gridshell.obj``: a doubly curved height-field patch for the gridshell (Fig. 14).
 
@@ -38,24 +42,46 @@ sys.path.insert(0, str(ROOT))
 
 from dgpc_cli.io.mesh import write_mesh_obj  # noqa: E402
 from dgpc_cli.surfaces.bent_sheet import bent_sheet  # noqa: E402
-from dgpc_cli.surfaces.minding import minding_bend  # noqa: E402
-from dgpc_cli.surfaces.profiles import read_profile_csv  # noqa: E402
+from dgpc_cli.surfaces.profiles import builtin_profile, read_profile_csv  # noqa: E402
 from dgpc_cli.surfaces.revolution import revolution_net  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 
 #: Net sizes (rows, cols) whose handle files are committed: the pipelines' defaults and the
 #: small versions of the golden tests.
-SIZES = {"gehry": [(21, 13), (9, 7)], "wall": [(21, 13), (9, 7)]}
-#: ``--span`` of the pipelines' `dgpc init` (degrees); the .mk files use the same values.
-SPAN = {"gehry": 90.0, "wall": 60.0}
-#: The four Gehry-type deformations: Minding λ, rotation axis, angle (rad), shift.
-GEHRY = [(0.8, (1.0, 0.3, 0.2), 0.15, (0.5, 0.0, 0.2)),
-         (0.9, (0.2, 1.0, 0.1), -0.1, (0.0, 0.4, 0.0)),
-         (1.1, (0.0, 0.2, 1.0), 0.2, (-0.3, 0.0, 0.1)),
-         (1.2, (1.0, -0.5, 0.3), -0.12, (0.2, -0.2, -0.3))]
-#: The timber wall: bent by Minding's λ = 0.85 and moved a little.
-WALL = (0.85, (0.0, 0.0, 1.0), 0.1, (0.3, 0.0, 0.0))
+SIZES = [(21, 13), (9, 7)]
+#: Corners and row middles of a net by name: (row, column) with -1 = the last, None = middle.
+CORNERS = {"bottom-left": (0, 0), "bottom-right": (0, -1), "top-left": (-1, 0),
+           "top-right": (-1, -1)}
+
+
+def twist(end: str, fraction: float) -> dict:
+    """A designer's drag: the corners of the other end row held, the two corners of row ``end``
+    ("top" or "bottom") pushed away from the axis and towards it by ``fraction`` of their
+    radius."""
+    other = "bottom" if end == "top" else "top"
+    return {f"{other}-left": 0.0, f"{other}-right": 0.0, f"{end}-left": fraction,
+            f"{end}-right": -fraction}
+
+
+#: Handle sets: name -> (profile: a CSV of samples/profiles or a built-in name, ``--span`` of
+#: the pipeline's `dgpc init` in degrees (the .mk files use the same values), drag: corner ->
+#: radial move as a fraction of its radius, 0 = held). The four Gehry-type patches twist their
+#: top or bottom row (one surface of revolution, one mold for all four), the timber wall its
+#: bottom row; the gallery twists six surfaces of revolution (paper Fig. 19).
+HANDLE_SETS = {
+    "gehry-1": ("gehry.csv", 90.0, twist("top", 0.07)),
+    "gehry-2": ("gehry.csv", 90.0, twist("top", -0.06)),
+    "gehry-3": ("gehry.csv", 90.0, twist("bottom", -0.035)),
+    "gehry-4": ("gehry.csv", 90.0, twist("bottom", 0.035)),
+    "wall": ("wall.csv", 60.0, twist("bottom", 0.05)),
+    "gallery-sphere-zone": ("sphere-zone", 90.0, twist("top", 0.08)),
+    "gallery-cylinder": ("cylinder", 90.0, twist("top", 0.05)),
+    "gallery-catenoid": ("catenoid", 90.0, twist("top", 0.06)),
+    "gallery-sphere": ("sphere", 90.0, twist("top", 0.04)),
+    "gallery-bowling-pin": ("bowling-pin", 90.0, twist("top", 0.3)),
+    "gallery-wall": ("wall.csv", 60.0, twist("top", 0.08)),
+}
 
 
 #: With ``--check``: the files that differ (nothing is written); else None.
@@ -109,24 +135,18 @@ def wall_profile(samples: int = 1201):
     return 4.0 + 0.25 * np.sin(0.8 * h), h
 
 
-def rotation(axis, angle: float) -> np.ndarray:
-    k = np.asarray(axis, float) / np.linalg.norm(axis)
-    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
-    return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
-
-
-def handle_indices(m: int, n: int) -> list[tuple[int, int]]:
-    """Three boundary handles: the two corners of the first row, the middle of the last."""
-    return [(0, 0), (0, n - 1), (m - 1, n // 2)]
-
-
-def handles_json(csv: Path, m: int, n: int, span: float, motion) -> bytes:
-    lam, axis, angle, shift = motion
-    f = revolution_net(read_profile_csv(csv), m, n, span_deg=span)
-    g = minding_bend(f, lam) @ rotation(axis, angle).T + np.asarray(shift, float)
-    doc = {"handles": [{"index": [u, v], "target": g[u, v].tolist()}
-                       for u, v in handle_indices(m, n)]}
-    return (json.dumps(doc, indent=1, sort_keys=True) + "\n").encode()
+def handles_json(profile, m: int, n: int, span: float, drag: dict) -> bytes:
+    """The handles of ``drag`` (see ``HANDLE_SETS``) on the m×n meridian net of ``profile``:
+    each corner moved radially (away from the axis for a positive fraction) in its row's
+    plane."""
+    f = revolution_net(profile, m, n, span_deg=span)
+    handles = []
+    for corner, fraction in drag.items():
+        u, v = (k % size for k, size in zip(CORNERS[corner], (m, n), strict=True))
+        p = f[u, v]
+        radial = np.array([p[0], p[1], 0.0])
+        handles.append({"index": [u, v], "target": (p + fraction * radial).tolist()})
+    return (json.dumps({"handles": handles}, indent=1, sort_keys=True) + "\n").encode()
 
 
 def gridshell_patch(length: float = 10.0, width: float = 8.0, resolution: float = 0.2):
@@ -153,18 +173,16 @@ def main(argv=None) -> int:
     _CHECK = [] if args.check else None
     extra = [tuple(int(k) for k in s.lower().split("x")) for s in args.size]
 
-    csvs = {"gehry": HERE / "profiles" / "gehry.csv", "wall": HERE / "profiles" / "wall.csv"}
-    write_bytes(csvs["gehry"], profile_csv(*gehry_profile()))
-    write_bytes(csvs["wall"], profile_csv(*wall_profile()))
-    # the handles are computed from the CSV as written (what `dgpc init` reads back)
-    rel = {k: Path("samples") / "profiles" / v.name for k, v in csvs.items()}
-    for m, n in sorted(set(SIZES["gehry"]) | set(extra)):
-        for k, motion in enumerate(GEHRY, start=1):
-            write_bytes(HERE / "handles" / f"gehry-{k}-{m}x{n}.json",
-                        handles_json(ROOT / rel["gehry"], m, n, SPAN["gehry"], motion))
-    for m, n in sorted(set(SIZES["wall"]) | set(extra)):
-        write_bytes(HERE / "handles" / f"wall-{m}x{n}.json",
-                    handles_json(ROOT / rel["wall"], m, n, SPAN["wall"], WALL))
+    csvs = {name: HERE / "profiles" / name for name in ("gehry.csv", "wall.csv")}
+    write_bytes(csvs["gehry.csv"], profile_csv(*gehry_profile()))
+    write_bytes(csvs["wall.csv"], profile_csv(*wall_profile()))
+    for name, (source, span, drag) in HANDLE_SETS.items():
+        # the handles are computed from the CSV as written (what `dgpc init` reads back)
+        profile = (read_profile_csv(csvs[source]) if source in csvs
+                   else builtin_profile(source))
+        for m, n in sorted(set(SIZES) | set(extra)):
+            write_bytes(HERE / "handles" / f"{name}-{m}x{n}.json",
+                        handles_json(profile, m, n, span, drag))
     V, F = bent_sheet(10.0, 6.0, bump=1e-4, resolution=0.1)
     write_bytes(HERE / "meshes" / "felt.obj", write_mesh_obj("felt.obj", V, F))
     V, F = gridshell_patch()

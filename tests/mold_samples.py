@@ -53,9 +53,9 @@ def deform(f: np.ndarray, lam: float, axis=(1.0, 0.3, 0.2), angle: float = 0.0,
     return g @ rotation(axis, angle).T + np.asarray(shift, float)
 
 
-def write(stem, f: np.ndarray):
-    """Write ``f`` as a net artifact at ``stem``; returns the stem."""
-    write_net(stem, NetArtifact(f=f))
+def write(stem, f: np.ndarray, units: str = "mm"):
+    """Write ``f`` as a net artifact in ``units`` at ``stem``; returns the stem."""
+    write_net(stem, NetArtifact(f=f, units=units))
     return stem
 
 

@@ -23,6 +23,9 @@ def _bound(name, layout, rng):
         w0 = rng.uniform(0.5, 1.5, layout.n_edges)
         cos0 = rng.uniform(-0.3, 0.3, len(boundary_angle_pairs(layout)))
         return lambda x: TERMS[name](x, layout, w0=w0, cos0=cos0)
+    if name in ("displacement_fairness", "closeness"):
+        f0 = rng.standard_normal((layout.n_vertices, 3))
+        return lambda x: TERMS[name](x, layout, f0)
     if name == "handles":
         ids, targets = np.array([0, 7, layout.n_vertices - 1]), rng.standard_normal((3, 3))
         return lambda x: TERMS[name](x, layout, ids, targets)
@@ -64,7 +67,7 @@ def test_equation_counts_follow_the_paper():
     E = layout.n_edges
     counts = {name: TERMS[name](x, layout)[0].size for name in
               ("net", "gpc", "arclength", "equal_strip_width", "developable", "fairness",
-               "ratio_revolution")}
+               "ratio_revolution", "equal_u_edges")}
     assert counts["net"] == 4 * E                          # 8|E| in the paper's doubled layout
     assert counts["gpc"] == 2 * (m * n - n - 2 * m + 2)    # paper's table
     assert counts["arclength"] == n * (m - 2)              # 2n(m-2) with w_ij, w_ji
@@ -72,6 +75,7 @@ def test_equation_counts_follow_the_paper():
     assert counts["developable"] == (n - 1) * (m - 2)
     assert counts["ratio_revolution"] == (m - 1) * (n - 2)
     assert counts["fairness"] == 3 * ((m - 2) * n + m * (n - 2))
+    assert counts["equal_u_edges"] == (m - 1) * (n - 1)
     assert NetLayout(21, 21).paper_size == 8043
 
 

@@ -10,13 +10,22 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "golden"))
 
-from pipelines import FLOOR, GOLDEN, SIZES, collect, coord_tol, rel_tol, run  # noqa: E402
+from pipelines import (  # noqa: E402
+    FLOOR,
+    GOLDEN,
+    SIZES,
+    collect,
+    coord_tol,
+    make_args,
+    rel_tol,
+    run,
+)
 
 
 @pytest.mark.parametrize("name", list(SIZES))
-def test_pipeline_matches_golden(tmp_path, name):
+def test_pipeline_matches_golden(pipeline_run, name):
     want = json.loads((GOLDEN / f"{name}.json").read_text())
-    got = collect(name, run(name, tmp_path))
+    got = collect(name, pipeline_run(name))
     assert got["size"] == want["size"]
     assert got["metrics"].keys() == want["metrics"].keys()
     for key, w in want["metrics"].items():
@@ -37,11 +46,9 @@ def _planned(name, out):
     import os
     import subprocess
 
-    rows, cols = SIZES[name]
     env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
     text = subprocess.run(["make", "-n", "-o", ".venv/.installed", f"pipeline-{name}",
-                           f"OUT={out}", f"ROWS={rows}", f"COLS={cols}",
-                           f"BIN={Path(sys.executable).parent}"],
+                           *make_args(name, out)],
                           cwd=Path(__file__).resolve().parents[1], check=True, env=env,
                           capture_output=True, text=True).stdout
     return [line.split()[2] for line in text.splitlines() if "/dgpc -q " in line]

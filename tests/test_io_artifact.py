@@ -153,7 +153,7 @@ def write_doc(path: Path, doc) -> Path:
 
 def test_make_envelope_fields():
     env = make_envelope("net", parameters={"a": 1})
-    assert env["created_by"] == f"dgpc {__version__}" and env["schema_version"] == 1
+    assert env["created_by"] == f"dgpc {__version__}" and env["schema_version"] == 2
     assert sorted(env) == sorted(artifact_mod.ENVELOPE_KEYS)
 
 
@@ -186,8 +186,19 @@ def test_load_envelope_wrong_kind(tmp_path):
 
 def test_load_envelope_unsupported_version(tmp_path):
     path = write_doc(tmp_path / "a.json", {**make_envelope("probe"), "schema_version": 7})
-    with pytest.raises(DgpcError, match=r"schema_version: 7 is not supported \(supported: 1\)"):
+    with pytest.raises(DgpcError, match=r"schema_version: 7 is not supported \(supported: 2\)"):
         load_envelope(path, "probe")
+
+
+def test_load_envelope_refuses_artifacts_without_units(tmp_path):
+    """Version 1 predates data.units: one line saying how to re-run."""
+    path = write_doc(tmp_path / "a.json", {**make_envelope("net"), "schema_version": 1})
+    with pytest.raises(DgpcError) as err:
+        load_envelope(path, "net")
+    text = str(err.value)
+    assert "\n" not in text and text.startswith(f"{path}: schema_version: 1 ")
+    assert "data.units" in text and "re-run" in text and "dgpc init" in text
+    assert "--units mm|cm|m|in|ft" in text
 
 
 @pytest.mark.parametrize("drop, field", [("status", "status"), ("inputs", "inputs")])

@@ -11,6 +11,7 @@ from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import load_envelope, sha256_bytes
 from dgpc_cli.io.net import NetArtifact, read_net, write_net
 from dgpc_cli.io.obj import format_net_obj, parse_net_obj
+from dgpc_cli.io.units import REACH_ULPS, stored
 
 
 def grid(m=4, n=3, seed=0):
@@ -80,12 +81,16 @@ def test_round_trip(tmp_path):
     json_path, obj_path = write_net(tmp_path / "a", src)
     assert (json_path.name, obj_path.name) == ("a.json", "a.obj")
     back = read_net(tmp_path / "a.obj")
-    assert np.array_equal(back.f, src.f) and back.shape == (4, 3)
+    # stored exactly as every unit gets it back: within a few ulps of the input
+    assert np.array_equal(back.f, stored(src.f, "mm")) and back.shape == (4, 3)
+    assert np.all(np.abs(back.f - src.f) <= REACH_ULPS * np.spacing(np.abs(src.f)))
     assert back.parameters == {"seed": 0} and back.metrics == {"R": 1e-12}
     assert back.data == {"surface": {"name": "wave"}, "shape": [4, 3], "geodesic_family": "u",
-                         "obj": "a.obj", "obj_sha256": sha256_bytes(obj_path.read_bytes())}
+                         "units": "mm", "obj": "a.obj",
+                         "obj_sha256": sha256_bytes(obj_path.read_bytes())}
+    assert back.units == "mm"
     doc = json.loads(json_path.read_text())
-    assert doc["kind"] == "net" and doc["schema_version"] == 1
+    assert doc["kind"] == "net" and doc["schema_version"] == 2
     assert doc["created_by"] == f"dgpc {__version__}"
 
 
@@ -182,7 +187,10 @@ def _set(path, value):
     (["kind"], "mold", "kind: is a 'mold' artifact, expected 'net'"),
     (["kind"], 3, "kind: must be 'net', got 3"),
     (["schema_version"], "1", "schema_version: must be of type integer"),
-    (["schema_version"], 2, "schema_version: 2 is not supported"),
+    (["schema_version"], 3, "schema_version: 3 is not supported"),
+    (["schema_version"], 1, "schema_version: 1 is no longer read, it predates length units"),
+    (["data", "units"], "km", r"data\.units: must be a length unit: mm, cm, m, in or ft"),
+    (["data", "units"], KeyError, r"data\.units: missing required field"),
     (["created_by"], "me", "created_by: must be 'dgpc <version>'"),
     (["data", "shape"], [4], r"data\.shape: must have at least 2 items"),
     (["data", "shape"], [4, 3, 1], r"data\.shape: must have at most 2 items"),

@@ -17,7 +17,7 @@ def sphere_net(R=2.0, m=21, n=15):
 
 BASE_KEYS = {"shape", "gpc_angle_defect_max", "orthogonality_max", "arclength_spread_max",
              "strip_width_spread_max", "ratio_spread_max", "jacobi_residual_max", "edges",
-             "gaussian_curvature"}
+             "gaussian_curvature", "u_spread_max", "pleat_max", "parallel_departure"}
 
 
 def test_plain_metrics_of_a_meridian_net():
@@ -32,6 +32,9 @@ def test_plain_metrics_of_a_meridian_net():
     assert res["strip_width_spread_max"] <= 1e-12
     assert res["ratio_spread_max"] <= 1e-12
     assert res["jacobi_residual_max"] > 1e-3          # a sphere is not developable
+    assert res["u_spread_max"] <= 1e-12               # congruent meridian strips
+    assert res["pleat_max"] <= 1e-3                   # smooth: a fourth difference
+    assert res["parallel_departure"]["relative"] <= 1e-12    # parallels are circles
     assert set(res["edges"]) == {"min", "mean", "max", "min_ratio", "folded"}
     assert res["edges"]["folded"] is False
     K = res["gaussian_curvature"]
@@ -81,3 +84,17 @@ def test_jsonable():
                     "c": np.bool_(True)})
     assert out == {"a": 1.5, "b": [2, None], "3": [1.0, None], "c": True}
     assert type(out["b"][0]) is int and type(out["c"]) is bool
+
+
+def test_straight_rows_depart_by_their_distance_from_a_line():
+    """A flat grid (every row a straight line: a circle of infinite radius) and one row bent
+    off its line by 0.3 out of the plane."""
+    from dgpc_cli.metrics.freeform import circle_departure, parallel_departure
+
+    u, v = np.meshgrid(np.arange(4.0), np.arange(5.0), indexing="ij")
+    f = np.stack([u, v, np.zeros_like(u)], axis=-1)
+    assert np.allclose(circle_departure(f), 0.0, atol=1e-12)
+    assert parallel_departure(f)["max"] <= 1e-12
+    f[2, 2, 2] = 0.3                        # row 2 is no longer straight: a circle fits it
+    d = circle_departure(f)
+    assert np.allclose(d[[0, 1, 3]], 0.0, atol=1e-12) and 0 < d[2] < 0.3

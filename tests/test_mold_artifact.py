@@ -17,8 +17,8 @@ from dgpc_cli.io.mold import read_mold
 @pytest.fixture(scope="module")
 def mold(tmp_path_factory):
     folder = tmp_path_factory.mktemp("mold")
-    stem = write(folder / "g", gehry_nets()[1])
-    dgpc("extract-mold", stem, "--panel-size", 2, "--mold-max-length", 1.3, "--unit", "m",
+    stem = write(folder / "g", gehry_nets()[1], units="m")
+    dgpc("extract-mold", stem, "--panel-size", 2, "--mold-max-length", 1.3, "--units", "m",
          "-o", folder / "mold")
     return folder / "mold"
 
@@ -75,13 +75,22 @@ def test_profile_dxf_reads_back_in_mm_and_passes_audit(mold):
     r, h = np.array(doc["data"]["profile"]["r"]), np.array(doc["data"]["profile"]["h"])
     assert np.allclose(pts, 1000.0 * np.column_stack([r, h]), rtol=0, atol=1e-9)   # m → mm
     assert not poly.closed
-    (axis,) = msp.query('LINE[layer=="AXIS"]')
-    assert axis.dxf.start.x == axis.dxf.end.x == 0.0
-    assert axis.dxf.start.y < pts[:, 1].min() and axis.dxf.end.y > pts[:, 1].max()
-    assert axis.dxf.linetype == "CENTER"
+    (axis,) = msp.query('LWPOLYLINE[layer=="AXIS"]')
+    (start, end) = np.array(axis.get_points("xy"))
+    assert start[0] == end[0] == 0.0
+    assert start[1] < pts[:, 1].min() and end[1] > pts[:, 1].max()
+    assert dxf.layers.get("AXIS").dxf.linetype == "CENTER"
     pieces = doc["data"]["pieces"]
-    assert len(msp.query('LINE[layer=="PIECES"]')) == 2 * len(pieces)
+    # one tick per piece end; two pieces that meet share theirs (no line drawn twice)
+    ends = {row for p in pieces for row in p["rows"]}
+    ticks = msp.query('LWPOLYLINE[layer=="PIECES"]')
+    assert len(ticks) == len(ends) < 2 * len(pieces)
+    assert sorted(np.array(t.get_points("xy"))[0, 1] for t in ticks) == \
+        pytest.approx(sorted(1000.0 * h[sorted(ends)]))
     assert sorted(t.dxf.text for t in msp.query("TEXT")) == [p["id"] for p in pieces]
+    assert dxf.header["$EXTMAX"][1] >= 1000.0 * h.max()                  # extents set
+    assert {t.dxf.layer for t in msp.query("TEXT")} == {"LABEL"}
+    assert dxf.layers.get("LABEL").color == 3                             # green, not yellow
 
 
 def test_profile_and_panel_csv(mold):
@@ -97,6 +106,35 @@ def test_profile_and_panel_csv(mold):
     panel = doc["data"]["panels"][0]
     assert first[0] == panel["id"] and first[2] == (panel["piece"] or "")
     assert first[-1] == str(int(panel["flat"]))
+    # integer rows and columns, the isometry error as a number
+    assert [int(v) for v in first[3:7]] == [*panel["rows"], *panel["cols"]]
+    assert float(first[9]) == pytest.approx(panel["isometry_error"], rel=1e-3)
+
+
+def test_panels_obj_groups_the_net_by_panel_id(mold):
+    """MOLD.panels.obj: the input net, its faces grouped by panel id (a facade model shows
+    which panel is which)."""
+    from dgpc_cli.io.net import read_net
+
+    doc = doc_of(mold)
+    f = read_net(mold.parent / "g").f
+    lines = (mold.parent / "mold.panels.obj").read_text().splitlines()
+    assert [x for x in lines if x.startswith("o ")] == ["o net1"]
+    verts = np.array([[float(v) for v in x.split()[1:]] for x in lines if x.startswith("v ")])
+    assert np.array_equal(verts, f.reshape(-1, 3))
+    groups, faces = {}, None
+    for x in lines:
+        if x.startswith("g "):
+            faces = groups.setdefault(x[2:], [])
+        elif x.startswith("f "):
+            faces.append([int(i) - 1 for i in x.split()[1:]])
+    panels = doc["data"]["panels"]
+    assert list(groups) == [p["id"] for p in panels]
+    n = f.shape[1]
+    for p in panels:
+        (r0, r1), (c0, c1) = p["rows"], p["cols"]
+        corners = {(i // n, i % n) for face in groups[p["id"]] for i in face}
+        assert corners == {(u, v) for u in range(r0, r1 + 1) for v in range(c0, c1 + 1)}
 
 
 def test_reading_detects_edited_and_missing_files(mold, tmp_path):

@@ -82,8 +82,14 @@ def test_panels_match_their_mold_patch_and_a_non_isometric_panel_is_caught(tmp_p
     g = deform(f, 0.9, angle=0.4)
     g[6, 4] += 0.02 * np.linalg.norm(g[6, 4] - g[6, 5])          # dent one vertex
     write(tmp_path / "dented", g)
+    # at the default --max-strain the dent is refused, naming its worst panel ...
+    err = dgpc("extract-mold", tmp_path / "dented", "--panel-size", 2, "--tol", 0.05,
+               "-o", tmp_path / "m", expect=1).stderr.strip()
+    assert len(err.splitlines()) == 1 and "P-u0" in err and "--max-strain 0.0003" in err
+    assert not list(tmp_path.glob("m.*"))
+    # ... and a looser one maps it
     dgpc("extract-mold", tmp_path / "dented", "--panel-size", 2, "--tol", 0.05,
-         "-o", tmp_path / "m")
+         "--max-strain", 0.05, "-o", tmp_path / "m")
     panels = {p["id"]: p for p in mold_doc(tmp_path / "m")["data"]["panels"]}
     # vertex (6, 4) is a corner of the panels of blocks (2|3, 1|2) only
     dented = {"P-u02-v01", "P-u02-v02", "P-u03-v01", "P-u03-v02"}
@@ -200,8 +206,8 @@ def test_flat_tol_and_panel_size_change_the_map(tmp_path):
     assert a["metrics"]["panels"] == 20 * 12 and a["metrics"]["panels_curved"] > 0
     assert b["metrics"]["panels_curved"] == 0 and b["metrics"]["pieces"] == 0
     assert a["parameters"] == {"segments": None, "lambda": None, "panel_size": 1,
-                               "flat_tol": 1e-5, "mold_max_length": None, "tol": 1e-6,
-                               "unit": "mm"}
+                               "flat_tol": 1e-5, "mold_max_length": None, "tol": 6e-4,
+                               "max_strain": 3e-4, "units": "mm"}
 
 
 def test_mold_max_length_shorter_than_a_panel_is_an_error(tmp_path):

@@ -8,6 +8,7 @@ import ezdxf
 import numpy as np
 import pytest
 from cli_helpers import dgpc, metrics
+from dxf_checks import check_cam_ready
 from shapely.geometry import Point, Polygon, box
 
 from dgpc_cli.io.flat import read_flat
@@ -49,7 +50,8 @@ def _read_sheet(path):
     doc = ezdxf.readfile(path)
     msp = doc.modelspace()
     return doc, {
-        "sheet": [np.array(e.get_points("xy")) for e in msp.query("LWPOLYLINE[layer=='SHEET']")],
+        "sheet": [(np.array(e.get_points("xy")), e.closed)
+                  for e in msp.query("LWPOLYLINE[layer=='SHEET']")],
         "cut": [(np.array(e.get_points("xy")), e.closed)
                 for e in msp.query("LWPOLYLINE[layer=='CUT']")],
         "score": [(np.array(e.get_points("xy")), e.closed)
@@ -66,14 +68,15 @@ def test_sheet_dxfs_pass_independent_checks(sample):
     assert art.data["sheet_count"] >= 2                      # several sheets on this size
     seen = []
     for s, rec in enumerate(art.data["sheets"]):
+        check_cam_ready(art.file(rec["dxf"]))               # R2010, mm, audit, extents ...
         doc, ents = _read_sheet(art.file(rec["dxf"]))
-        assert doc.dxfversion == "AC1024"                    # R2010
-        assert doc.header["$INSUNITS"] == 4                  # mm
-        auditor = doc.audit()
-        assert not auditor.has_errors, [str(e) for e in auditor.errors]
-        (sheet_pts,) = ents["sheet"]
-        lo, hi = sheet_pts.min(axis=0), sheet_pts.max(axis=0)
+        assert len(ents["sheet"]) == 4 and not any(closed for _, closed in ents["sheet"])
+        border = np.concatenate([pts for pts, _ in ents["sheet"]])
+        lo, hi = border.min(axis=0), border.max(axis=0)
         assert np.allclose(lo, 0) and np.allclose(hi, SHEET)
+        layer = doc.layers.get("SHEET")
+        assert layer.dxf.plot == 0 and layer.dxf.linetype == "DASHED" and layer.color == 8
+        assert [doc.layers.get(n).color for n in ("CUT", "SCORE", "LABEL")] == [1, 5, 3]
         inner = box(MARGIN, MARGIN, SHEET[0] - MARGIN, SHEET[1] - MARGIN)
         polys = []
         for pts, closed in ents["cut"]:
@@ -105,51 +108,100 @@ def test_sheet_dxfs_pass_independent_checks(sample):
     assert m["sheet_count"] == art.data["sheet_count"] and m["n_parts"] == len(flat)
 
 
+def _colours(png: bytes) -> dict[str, int]:
+    """Pixels of a preview that are clearly red, blue, green or mid grey."""
+    import io
+
+    from matplotlib.image import imread
+
+    rgb = imread(io.BytesIO(png), format="png")[..., :3]
+    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+    return {"red": int(np.sum((r > 0.7) & (g < 0.3) & (b < 0.3))),
+            "blue": int(np.sum((b > 0.7) & (r < 0.3) & (g < 0.3))),
+            "green": int(np.sum((g > 0.6) & (r < 0.3) & (b < 0.3))),
+            "grey": int(np.sum((np.abs(r - g) < 0.05) & (np.abs(g - b) < 0.05)
+                               & (r > 0.3) & (r < 0.7)))}
+
+
 def test_parts_csv_obj_and_previews(sample):
     folder, flat_stem, _ = sample
     art = read_sheets(folder / "sh")
+    flat = {p["id"]: p for p in read_flat(flat_stem).parts}
+    placed = {p["part"]: p for p in art.data["placements"]}
     rows = list(csv.DictReader(art.file("parts_csv").open()))
-    assert [r["part"] for r in rows] == sorted(p["id"] for p in read_flat(flat_stem).parts)
+    assert list(rows[0]) == ["id", "class", "strip", "board", "sheet", "x_mm", "y_mm",
+                             "rotation_deg", "row_start", "row_stop", "start_mm", "stop_mm",
+                             "length_mm", "width_min_mm", "width_max_mm", "area_mm2"]
+    assert [r["id"] for r in rows] == sorted(flat)
     for r in rows:
-        assert r["net_columns"] == f"{r['strip']}-{int(r['strip']) + 1}"
-        assert r["sheet"].startswith("SH")
+        part, pl = flat[r["id"]], placed[r["id"]]
+        assert r["sheet"] == f"SH{pl['sheet'] + 1:02d}" and r["class"] == part["class"]
+        assert (float(r["x_mm"]), float(r["y_mm"])) == pytest.approx(pl["translation"],
+                                                                     abs=1e-3)
+        assert float(r["rotation_deg"]) == pl["rotation"]
+        assert (int(r["row_start"]), int(r["row_stop"])) == (0, 20)      # whole strips
+        assert int(r["board"]) == 1 and int(r["strip"]) == part["strip"]
+        # mm from the net unit (mm) × scale; the area from the outline itself
+        length = float(r["length_mm"])
+        assert length == pytest.approx(SCALE * part["length"], abs=1e-3)
+        assert float(r["area_mm2"]) == pytest.approx(SCALE**2 * Polygon(part["outline"]).area,
+                                                     rel=1e-9, abs=0.01)
+        A, B = (np.asarray(g) for g in part["geodesics"])
+        rulings = SCALE * np.linalg.norm(A - B, axis=1)      # a width is at most a ruling
+        w0, w1 = float(r["width_min_mm"]), float(r["width_max_mm"])
+        assert 0 < w0 <= w1 <= max(rulings) + 1e-3
+        assert w0 * length <= float(r["area_mm2"]) <= w1 * length
     obj = (folder / "sh.obj").read_text().splitlines()
     assert sum(line.startswith("o SH") for line in obj) == art.data["sheet_count"]
     assert sum(line.startswith("l ") for line in obj) == art.data["sheet_count"] + len(rows)
     for rec in art.data["sheets"]:
-        assert art.file(rec["png"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        png = art.file(rec["png"]).read_bytes()
+        assert png[:8] == b"\x89PNG\r\n\x1a\n"
         assert b"<svg" in art.file(rec["svg"]).read_bytes()[:500]
+        colours = _colours(png)                  # cut red, score blue, labels green, sheet grey
+        assert all(colours[c] > 50 for c in ("red", "blue", "green", "grey")), colours
+    assert art.file("moldmap_png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
 def test_mold_map(sample):
     folder, _, _ = sample
     art = read_sheets(folder / "sh")
     mold = json.loads((folder / "mold.json").read_text())["data"]
+    check_cam_ready(art.file("moldmap_dxf"))        # no line twice (shared outlines drawn once)
     doc = ezdxf.readfile(art.file("moldmap_dxf"))
-    assert doc.header["$INSUNITS"] == 4 and not doc.audit().has_errors
     msp = doc.modelspace()
     (profile,) = msp.query("LWPOLYLINE[layer=='PROFILE']")
     r = np.array(profile.get_points("xy"))[:, 0]
     assert np.allclose(r, SCALE * np.asarray(mold["profile"]["r"]), atol=1e-6)
-    assert len(msp.query("LWPOLYLINE[layer=='PIECES']")) == len(mold["pieces"])
+    (piece,) = mold["pieces"]
+    (outline,) = msp.query("LWPOLYLINE[layer=='PIECES']")    # drawn first, closed
+    assert outline.closed
     table = " ".join(e.dxf.text for e in msp.query("TEXT[layer=='TABLE']"))
-    for piece in mold["pieces"]:
-        assert piece["id"] in table
+    assert piece["id"] in table
     assert all(p["id"] in table for p in mold["panels"])
     assert "flat panels" in table
-    # where the curved panels are pressed: one outline per band of mold rows, inside its piece
+    assert {e.dxf.layer for e in msp.query("TEXT")} == {"LABEL", "TABLE"}
+    assert doc.layers.get("LABEL").color == 3                # green, readable on white
+    # where the curved panels are pressed: per band of mold rows a label, and its lower and
+    # upper edge across the developed sector (s = meridian arc length) drawn once
     curved = [p for p in mold["panels"] if p["piece"] is not None]
     bands = sorted({tuple(p["rows"]) for p in curved})
-    outlines = msp.query("LWPOLYLINE[layer=='PANELS']")
-    assert len(outlines) == len(bands) > 0
     labels = [e.dxf.text for e in msp.query("TEXT[layer=='LABEL']")
               if e.dxf.text.startswith("rows")]
     counts = {rows: sum(tuple(p["rows"]) == rows for p in curved) for rows in bands}
     assert labels == [f"rows {a}-{b}: {counts[(a, b)]} panels" for a, b in bands]
-    (sector,) = msp.query("LWPOLYLINE[layer=='SECTOR']")
-    xs = np.array(sector.get_points("xy"))[:, 0]
-    for outline in outlines:
-        pts = np.array(outline.get_points("xy"))
+    rh = SCALE * np.column_stack([mold["profile"]["r"], mold["profile"]["h"]])
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(rh, axis=0), axis=1))])
+    lines = [np.array(e.get_points("xy")) for e in msp.query("LWPOLYLINE")
+             if e.dxf.layer in ("PIECES", "PANELS", "SECTOR")]
+    lines = [np.concatenate([p, p[:1]]) for p in lines]     # closed ones: their last side too
+    xs = np.concatenate(lines)[:, 0]
+    across = {round(float(seg[0, 1]), 6) for pts in lines
+              for seg in np.stack([pts[:-1], pts[1:]], axis=1) if seg[0, 1] == seg[1, 1]}
+    for a, b in bands:
+        assert round(float(s[a]), 6) in across and round(float(s[b]), 6) in across
+    for e in msp.query("LWPOLYLINE[layer=='PANELS']"):
+        pts = np.array(e.get_points("xy"))
         assert xs.min() - 1e-6 <= pts[:, 0].min() and pts[:, 0].max() <= xs.max() + 1e-6
 
 
@@ -182,7 +234,7 @@ def test_schema_rejects_edits(sample, tmp_path):
     folder, _, _ = sample
     from dgpc_cli.errors import DgpcError
 
-    for name in ("sh.obj", "sh.parts.csv", "sh.moldmap.dxf"):
+    for name in ("sh.obj", "sh.parts.csv", "sh.moldmap.dxf", "sh.moldmap.png"):
         (tmp_path / name).write_bytes((folder / name).read_bytes())
     for f in folder.glob("sh.sheet*"):
         (tmp_path / f.name).write_bytes(f.read_bytes())

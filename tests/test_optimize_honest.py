@@ -90,7 +90,8 @@ def test_max_iter_bounds_the_whole_run_across_handle_steps(half_sphere):
     status = read_net(d / "short").status
     per_step = [s["iterations"] for s in status["steps"]]
     assert status["iterations"] == sum(per_step) <= 25
-    assert len(per_step) == 4 and min(per_step) >= 1            # every step had its share
+    # every handle step had its share (the relaxation rounds and the projection follow)
+    assert len(per_step) >= 4 and min(per_step[:4]) >= 1
     assert read_net(d / "short").parameters["max_iter"] == 25
 
 
@@ -99,7 +100,9 @@ def test_default_iteration_budget_is_per_step(half_sphere):
     dgpc("optimize", d / "hs0", "--mode", "isometric", "--handles", d / "h.json",
          "--steps", 3, "-o", d / "full")
     net = read_net(d / "full")
-    assert net.parameters["max_iter"] == 600
-    assert net.status["iterations"] <= 600 and net.status["state"] == "converged"
+    # a drag's intermediate steps stop at 10, its last at 200; four relaxation rounds of 30;
+    # 200 for the final projection
+    assert net.parameters["max_iter"] == 10 + 10 + 200 + 4 * 30 + 200
+    assert net.status["iterations"] <= 540 and net.status["state"] == "converged"
     target = json.loads((d / "h.json").read_text())["handles"][0]["target"]
     assert np.linalg.norm(net.f[0, 0] - target) <= 1e-6

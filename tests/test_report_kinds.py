@@ -144,3 +144,22 @@ def test_metrics_table_flattens_and_summarises():
     assert rows["a"] == "[1, 2]" and rows["b.y"] == "null" and rows["flag"] == "true"
     assert rows["long"] == f"{LIST_MAX + 1} values, min 0, max {LIST_MAX}"
     assert rows[f"hist[{LIST_MAX}].R"] == str(LIST_MAX)
+
+
+def test_lengths_are_labelled_with_the_unit(tmp_path):
+    """A net in ft: its figures' axes and the index's table name the unit of every length."""
+    from dgpc_cli.report.html import metric_unit
+
+    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 7, "--cols", 5,
+         "--span", 120, "--units", "ft", "-o", tmp_path / "net")
+    dgpc("report", tmp_path / "net", "-o", tmp_path / "r")
+    text = (tmp_path / "r-index.html").read_text()
+    assert "lengths in <b>ft</b>" in text
+    assert re.search(r"<tr><td>edges\.max</td><td>[0-9.e-]+</td><td>ft</td></tr>", text)
+    assert re.search(r"<tr><td>gaussian_curvature\.max</td><td>[0-9.e-]+</td>"
+                     r"<td>1/ft²</td></tr>", text)
+    assert re.search(r"<tr><td>R</td><td>[0-9.e-]+</td><td></td></tr>", text)
+    assert [metric_unit(k, "m") for k in ("per_part.S-v01.length", "total_area",
+                                          "hausdorff.relative", "hausdorff.max",
+                                          "strain.max", "clairaut.max_relative_mad")] == \
+        ["m", "m²", "", "m", "", ""]

@@ -62,10 +62,15 @@ def test_invalid_strips_documents(artifacts, path, value, message):
     (("data", "parts", 0, "alignment", "relabel"), "flipped", "relabel"),
     (("data", "classes", 0, "quantity"), 0, "quantity"),
     (("data", "classes"), [], "data.classes"),
+    (("data", "parts", 0, "id"), "S-v00.0", "data.parts[0].id: must be a part id"),
+    (("data", "parts", 0, "rows"), [0, 2.5], "rows"),
+    (("data", "joints"), [{"strip": "S-v00", "row": 0, "position": 1.0,
+                           "parts": ["S-v00.1", "S-v00.2"]}], "data.joints[0].row"),
+    (("data", "units"), "yd", "data.units: must be a length unit"),
 ])
 def test_invalid_flat_documents(artifacts, path, value, message):
     doc = _edited(_doc(artifacts, "f"), path, value)
-    with pytest.raises(DgpcError, match=message):
+    with pytest.raises(DgpcError, match=message.replace("[", r"\[").replace("]", r"\]")):
         validate(doc, load_schema("flat"), "x")
 
 
@@ -73,7 +78,8 @@ def test_flat_reading_checks_classes_against_parts(artifacts, tmp_path):
     doc = _doc(artifacts, "f")
     doc["data"]["classes"][0]["quantity"] += 1
     (tmp_path / "f.json").write_text(json.dumps(doc))
-    (tmp_path / "f.obj").write_bytes((artifacts / "f.obj").read_bytes())
+    for name in ("f.obj", "f.parts.csv"):
+        (tmp_path / name).write_bytes((artifacts / name).read_bytes())
     with pytest.raises(DgpcError, match="quantity"):
         read_flat(tmp_path / "f")
 

@@ -8,17 +8,26 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
+from dgpc_cli.cli.options import (
+    check_units,
+    check_writable,
+    force_opt,
+    format_opt,
+    output_opt,
+    units_check_opt,
+)
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.mold import mold_files, mold_paths
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
-from dgpc_cli.mold.dxf import UNIT_MM
+from dgpc_cli.io.units import same_units
+from dgpc_cli.mold.dxf import profile_dxf
 from dgpc_cli.stages.extract_mold import (
     DEFAULT_FLAT_TOL,
+    DEFAULT_MAX_STRAIN,
     DEFAULT_PANEL_SIZE,
-    DEFAULT_TOL,
+    DEFAULT_TOL_FACTOR,
     extract_mold,
 )
 from dgpc_cli.stages.soundness import require_sound_net
@@ -40,16 +49,19 @@ log = logging.getLogger(__name__)
               help="A panel is flat (no mold) where |K|·l² = |δ_uu w / w| ≤ T on all of it.")
 @click.option("--mold-max-length", type=click.FloatRange(min=0, min_open=True), default=None,
               help="Longest mold piece along the meridian (net units) [default: no limit].")
-@click.option("--tol", type=click.FloatRange(min=0, min_open=True), default=DEFAULT_TOL,
-              show_default=True,
-              help="Relative tolerance of equation (5) and of the comparison between nets.")
-@click.option("--unit", type=click.Choice(list(UNIT_MM)), default="mm", show_default=True,
-              help="Length unit of the nets (the profile DXF is written in mm).")
+@click.option("--tol", type=click.FloatRange(min=0, min_open=True), default=None,
+              help="Relative tolerance of equation (5) and of the comparison between nets "
+                   "[default: twice --max-strain].")
+@click.option("--max-strain", type=click.FloatRange(min=0, min_open=True),
+              default=DEFAULT_MAX_STRAIN, show_default=True,
+              help="Largest relative difference of a panel's edges and diagonals from its "
+                   "mold patch; a net with a panel further off is refused.")
+@units_check_opt
 @output_opt
 @force_opt
 @format_opt
-def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length, tol, unit,
-                     output, force, fmt):
+def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length, tol,
+                     max_strain, units_check, output, force, fmt):
     """Extract the surface of revolution that the nets NET… are isometric to (paper §4.2.2).
 
     Writes the mold artifact -o MOLD: MOLD.json, MOLD.obj (the surface of revolution and one
@@ -60,15 +72,19 @@ def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length,
     """
     if segments is not None and lam is not None:
         raise click.UsageError("--segments and --lambda are mutually exclusive")
+    if tol is None:
+        tol = DEFAULT_TOL_FACTOR * max_strain
     paths = mold_paths(output)
     check_writable(output, force, *(paths[k] for k in ("profile_csv", "profile_dxf",
-                                                        "panels_csv")))
+                                                        "panels_csv", "panels_obj")))
     loaded = [(str(artifact_paths(stem)[0]), read_net(stem)) for stem in nets]
     for name, net in loaded:
         require_sound_net(net.f, name)
+    unit = same_units([(name, net.units) for name, net in loaded])
+    check_units(units_check, unit, loaded[0][0])
     mold = extract_mold([(name, net.f) for name, net in loaded], segments=segments, lam=lam,
                         panel_size=panel_size, flat_tol=flat_tol, max_length=mold_max_length,
-                        tol=tol)
+                        tol=tol, max_strain=max_strain)
     folder = paths["json"].resolve().parent
     inputs = {f"net{k + 1}": file_input(name, folder) for k, (name, _) in enumerate(loaded)}
     mer = mold.meridian
@@ -78,7 +94,9 @@ def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length,
     files = mold_files(
         output,
         profile={"r": mer.r, "h": mer.h, "d": mer.d, "l": mer.l, "x": mer.x},
-        unit=unit,
+        units=unit,
+        profile_dxf=profile_dxf(mer.r, mer.h, unit, [(p.id, p.start, p.stop)
+                                                     for p in mold.pieces]),
         segments={"segments": mer.segments, "segments_requested": mer.requested,
                   "lambda": mer.lam, "lambda_lowered": mer.lowered},
         sector_deg=math.degrees(mold.sector_angle),
@@ -87,12 +105,13 @@ def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length,
         nets=[{"input": f"net{k + 1}", "shape": list(p.shape),
                "column_angles_deg": [math.degrees(t) for t in p.theta.tolist()],
                "revolution_residual_max": p.residual_max} for k, p in enumerate(mold.nets)],
+        net_geometry=[net.f for _, net in loaded],
         panels=mold.panel_records(),
         panel_size=panel_size,
         inputs=inputs,
         parameters={"segments": segments, "lambda": lam, "panel_size": panel_size,
                     "flat_tol": flat_tol, "mold_max_length": mold_max_length, "tol": tol,
-                    "unit": unit},
+                    "max_strain": max_strain, "units": unit},
         metrics=metrics,
         status={"state": "ok", "lambda_lowered": mer.lowered, "message": message},
     )

@@ -20,6 +20,7 @@ from dgpc_cli.io.artifact import artifact_paths, file_input, relative_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import net_files
 from dgpc_cli.io.rhino import with_3dm
+from dgpc_cli.io.units import DEFAULT_UNITS, UNIT_MM
 from dgpc_cli.stages.init import init_revolution
 from dgpc_cli.stages.inspect import summarize
 from dgpc_cli.surfaces.profiles import describe_builtins
@@ -130,13 +131,17 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
 @click.option("--reference-out", type=click.Path(dir_okay=False, path_type=Path),
               help="--surface: also write the triangulated surface (OBJ), fine enough to be "
                    "the reference for `optimize --mode fit`.")
+@click.option("--units", type=click.Choice(list(UNIT_MM)), default=DEFAULT_UNITS,
+              show_default=True,
+              help="Length unit of the coordinates (of the profile, mesh or quad net, and of "
+                   "the net made): every later stage carries it on; DXF files are in mm.")
 @output_opt
 @force_opt
 @format_opt
 @click.pass_context
 def init(ctx, reference, surface, profile, method, base, direction, angle, from_quads,
-         largest_component, extend, rows, cols, spacing, span, twist, reference_out, output,
-         force, fmt):
+         largest_component, extend, rows, cols, spacing, span, twist, reference_out, units,
+         output, force, fmt):
     """Make an initial m×n net (u-lines: the geodesics).
 
     \b
@@ -184,7 +189,7 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     mesh = None
     if surface:
         result = init_revolution(profile, rows, cols, span_deg=span, twist=twist,
-                                 reference_out=reference_out)
+                                 reference_out=reference_out, units=units)
         net = result.net
         if "profile" in net.inputs:
             net.inputs["profile"] = file_input(net.inputs["profile"], folder)
@@ -205,6 +210,8 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
             mesh = load_mesh(reference, pieces="largest" if largest_component else "one")
     if mesh is not None:
         net.inputs["reference"] = net.data["reference"] = file_input(mesh.path, folder)
+    net.units = units
+    net.parameters["units"] = units
     net.metrics = summarize(net, mesh=mesh)
     files.update(with_3dm(net_files(output, net), output, fmt))
     write_files(files, force=force)

@@ -15,6 +15,7 @@ from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.laths import laths_files
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
+from dgpc_cli.io.units import same_units
 from dgpc_cli.stages.laths import GAP, gridshell
 from dgpc_cli.stages.soundness import require_sound_net
 
@@ -52,6 +53,8 @@ def laths(net_a, net_b, gap, output, force, fmt):
     a, b = read_net(net_a), read_net(net_b)
     require_sound_net(a.f, artifact_paths(net_a)[0])
     require_sound_net(b.f, artifact_paths(net_b)[0])
+    units = same_units([(str(artifact_paths(net_a)[0]), a.units),
+                        (str(artifact_paths(net_b)[0]), b.units)])
     ref_a, ref_b = a.data.get("reference"), b.data.get("reference")
     if ref_a and ref_b and ref_a.get("sha256") != ref_b.get("sha256"):
         log.warning("%s and %s record different references", net_a, net_b)
@@ -67,7 +70,7 @@ def laths(net_a, net_b, gap, output, force, fmt):
     metrics = {"laths": len(all_laths), "crossings": int(len(crossings.a)),
                "crossing_gap_max": float(crossings.gap.max()),
                "length_total": float(lengths.sum()), "length_max": float(lengths.max())}
-    files = laths_files(output, all_laths, crossings, inputs=inputs,
+    files = laths_files(output, all_laths, crossings, units=units, inputs=inputs,
                         parameters={"gap": gap}, metrics=metrics)
     write_files(with_3dm(files, output, fmt), force=force)
     log.info("%d laths, %d crossings, largest gap %.3g", len(all_laths), len(crossings.a),

@@ -7,13 +7,21 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt, progressbar
+from dgpc_cli.cli.options import (
+    check_units,
+    check_writable,
+    force_opt,
+    format_opt,
+    output_opt,
+    progressbar,
+    units_check_opt,
+)
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
-from dgpc_cli.io.dxf import UNIT_MM
 from dgpc_cli.io.flat import read_flat
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.sheets import extra_path, sheets_files
+from dgpc_cli.io.units import mm_per_unit, same_units
 from dgpc_cli.nesting.blf import Sheet
 from dgpc_cli.stages.nest import (
     ENGINES,
@@ -53,11 +61,11 @@ def _parsed(parser):
 @click.option("--rotations", default="0,180", show_default=True,
               callback=_parsed(parse_rotations), metavar="DEG,DEG,...",
               help="Allowed rotations in degrees (grain or rolling direction).")
-@click.option("--units", type=click.Choice(list(UNIT_MM)), default="mm", show_default=True,
-              help="The unit of the net's coordinates.")
+@units_check_opt
 @click.option("--scale", type=click.FloatRange(min=0, min_open=True), default=1.0,
               show_default=True,
-              help="Model scale: 1 net unit is SCALE x UNITS in the DXF (mm).")
+              help="Model scale (a scale model): 1 unit of the parts is SCALE units in the DXF "
+                   "(mm).")
 @click.option("--engine", type=click.Choice(ENGINES), default="fill", show_default=True,
               help="'fill': deterministic no-fit-polygon fill; 'spyrrow': spyrrow's strip "
                    "packer sheet by sheet (time-bounded, see --time-limit).")
@@ -70,23 +78,26 @@ def _parsed(parser):
 @force_opt
 @format_opt
 @click.pass_context
-def nest(ctx, stem, mold_stem, sheet_size, margin, spacing, rotations, units, scale, engine,
-         time_limit, seed, output, force, fmt):
+def nest(ctx, stem, mold_stem, sheet_size, margin, spacing, rotations, units_check, scale,
+         engine, time_limit, seed, output, force, fmt):
     """Place every part of the flat artifact STEM (each congruence class in its quantity) on
     as few sheets as it can, and write the sheets artifact -o SHEETS: SHEETS.json, .obj,
     .parts.csv and per sheet SHEETS.sheetNN.dxf/.svg/.png (with --mold, .moldmap.dxf).
 
-    Coordinates: 1 net unit = SCALE x UNITS, in mm in every DXF; sheet, margin and spacing in
-    mm. Prints the written JSON path.
+    The parts' unit is the flat artifact's (from `init --units`); every DXF is in mm (times
+    SCALE); sheet, margin and spacing are in mm. Prints the written JSON path.
     """
     json_path, _ = artifact_paths(stem)
     check_writable(output, force, extra_path(output, "parts_csv"))
     flat = read_flat(stem)
+    check_units(units_check, flat.units, json_path)
+    units = flat.units
     mold = None
     if mold_stem is not None:
         from dgpc_cli.io.mold import read_mold
 
         mold = read_mold(mold_stem)
+        same_units([(str(json_path), units), (str(artifact_paths(mold_stem)[0]), mold.units)])
     sheet = Sheet(sheet_size[0], sheet_size[1], margin, spacing)
     n = len(flat.parts)
     with progressbar(ctx, length=(2 * n if engine == "fill" else n),
@@ -94,19 +105,20 @@ def nest(ctx, stem, mold_stem, sheet_size, margin, spacing, rotations, units, sc
         result = nest_parts(flat.parts, sheet, rotations, units=units, scale=scale,
                             engine=engine, time_limit=time_limit, seed=seed,
                             progress=bar.update)
-    extra: dict[str, bytes] = {"parts_csv": parts_csv(result)}
+    extra: dict[str, bytes] = {"parts_csv": parts_csv(result, flat.parts,
+                                                      scale * mm_per_unit(units))}
     drawings = sheet_drawings(result)
-    for s, (dxf, svg, png) in enumerate(drawings):
+    for s, (dxf, svg, png, _) in enumerate(drawings):
         extra.update({f"sheet{s + 1:02d}_dxf": dxf, f"sheet{s + 1:02d}_svg": svg,
                       f"sheet{s + 1:02d}_png": png})
     out_json, _ = artifact_paths(output)
     folder = out_json.resolve().parent
     inputs = {"flat": file_input(json_path, folder)}
     if mold is not None:
-        extra["moldmap_dxf"] = mold_map(mold, scale * UNIT_MM[units])
+        extra["moldmap_dxf"], extra["moldmap_png"] = mold_map(mold, scale)
         inputs["mold"] = file_input(artifact_paths(mold_stem)[0], folder)
-    data = sheets_data(result, units=units, scale=scale, engine=engine,
-                       time_limit=time_limit, seed=seed)
+    data = sheets_data(result, [d[3] for d in drawings], units=units, scale=scale,
+                       engine=engine, time_limit=time_limit, seed=seed)
     parameters = {"sheet": f"{sheet.width:g}x{sheet.height:g}", "margin": margin,
                   "spacing": spacing, "rotations": rotations, "units": units, "scale": scale,
                   "engine": engine, "time_limit": time_limit, "seed": seed,

@@ -7,7 +7,8 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt, progressbar
+from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
+from dgpc_cli.cli.progress import SolverProgress
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.core.solver import Schedule
 from dgpc_cli.core.solver.linear import BACKENDS
@@ -19,9 +20,10 @@ from dgpc_cli.io.handles import read_handles
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import NetArtifact, net_files, read_net
 from dgpc_cli.io.rhino import with_3dm
+from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.stages.inspect import summarize
-from dgpc_cli.stages.modes import MODES, SOFT, describe_weights, mode_weights
-from dgpc_cli.stages.optimize import boundary_vertices, optimize_net
+from dgpc_cli.stages.modes import MODES, RELAX, SOFT, describe_weights, mode_weights
+from dgpc_cli.stages.optimize import boundary_vertices, judge, optimize_net
 from dgpc_cli.stages.polish import polish_weights
 from dgpc_cli.tolerances import tol as TOL
 
@@ -74,6 +76,14 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
 @click.option("--tol", type=click.FloatRange(min=0, min_open=True), default=TOL.solver_R,
               show_default=True, help="Tolerance on the residual of the hard constraints "
                                       "(net scaled to mean edge length 1).")
+@click.option("--max-strain", type=click.FloatRange(min=0, min_open=True),
+              default=TOL.max_strain, show_default=True,
+              help="revolution: largest relative error of a quad's edges and diagonals against "
+                   "the surface of revolution; isometric: largest strain |λ1|+|λ2| against the "
+                   "input (§6.1); above it the net is not converged (3e-4: 0.3 mm per metre).")
+@click.option("--gpc-tol", type=click.FloatRange(min=0, min_open=True), default=TOL.gpc_tol,
+              show_default=True,
+              help="isometric: largest angle defect of (6), radians, that counts as converged.")
 @click.option("--solver", "backend", type=click.Choice(["auto", *BACKENDS]), default="auto",
               show_default=True, help="Sparse linear solver of the normal equations.")
 @output_opt
@@ -81,11 +91,13 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
 @format_opt
 @click.pass_context
 def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, max_iter, tol,
-             backend, output, force, fmt):
+             max_strain, gpc_tol, backend, output, force, fmt):
     """Optimize the net STEM with guided projection (paper §5) and write it to -o STEM2.
 
-    Exit code 3 if the last step does not reach --tol (the artifact is still written, with
-    its status).
+    Exit code 3 if the last step does not reach --tol, if the net is pleated, in revolution
+    mode if a quad is further than --max-strain from the surface of revolution, or, in
+    isometric mode, if its strain or gpc angle defect is above --max-strain or --gpc-tol (the
+    artifact is still written, with its status).
     """
     try:
         schedules = mode_weights(mode, weights)
@@ -103,30 +115,24 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
     if mode == "fit":
         schedules = polish_weights(net.f, schedules, weights)
     handle_ids = handle_targets = None
+    mm = mm_per_unit(net.units)      # the stages compute in mm (dgpc_cli.io.units)
     if handles is not None:
-        handle_ids, handle_targets = read_handles(handles, net.shape, net.f)
+        handle_ids, handle_targets = read_handles(handles, net.shape, net.f_mm, scale=mm)
     if mode == "isometric" and handle_ids is None:
         raise DgpcError("--mode isometric needs --handles", source="--handles")
 
-    budget = max_iter or TOL.max_iter * (steps + 1)
-    with progressbar(ctx, budget, f"optimize ({mode})") as bar:
-        last = [0]
-
-        def progress(k, record):
-            bar.update(k + 1 - last[0])
-            last[0] = k + 1
-
-        surface = (ReferenceSurface.from_mesh(fit_surface(mesh, net.extend))
-                   if mesh is not None else None)
+    with SolverProgress(ctx, f"optimize ({mode})", tol) as progress:
+        fit = fit_surface(mesh, net.extend) if mesh is not None else None
+        surface = ReferenceSurface(fit.vertices * mm, fit.faces) if fit is not None else None
         # a net that runs past its reference (init --extend) has no rim on its boundary
-        rim = (boundary_vertices(net.f, surface)
+        rim = (boundary_vertices(net.f_mm, surface)
                if surface is not None and not net.extend
                and schedules.get("boundary", Schedule.constant(0)).end > 0 else None)
         outcome = optimize_net(
-            net.f, schedules, reference=surface, boundary_ids=rim,
+            net.f_mm, schedules, reference=surface, boundary_ids=rim,
             handle_ids=handle_ids, handle_targets=handle_targets, soft=SOFT[mode], steps=steps,
-            max_iter=max_iter, tol=tol, backend=backend, progress=progress)
-        bar.update(budget - last[0])
+            max_iter=max_iter, tol=tol, backend=backend, progress=progress,
+            relax=RELAX.get(mode))
 
     out_json, _ = artifact_paths(output)
     folder = out_json.resolve().parent
@@ -138,21 +144,26 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
         inputs["reference"] = data["reference"] = file_input(mesh.path, folder)
     if handle_ids is not None:
         inputs["handles"] = file_input(handles, folder)
-        data["handles"] = {"ids": handle_ids.tolist(), "targets": handle_targets.tolist()}
+        data["handles"] = {"ids": handle_ids.tolist(), "targets": (handle_targets / mm).tolist()}
     if rim is not None and len(rim):
         data["boundary"] = {"ids": rim.tolist()}
     result = NetArtifact(
-        f=outcome.f,
-        parameters={"mode": mode, "weights": describe_weights(schedules), "steps": steps,
-                    "max_iter": outcome.max_iter, "tol": tol, "solver": backend,
+        f=from_mm(outcome.f, net.units), units=net.units,
+        parameters={"mode": mode, "weights": describe_weights(schedules),
+                    "soft": list(SOFT[mode]), "steps": steps, "max_iter": outcome.max_iter,
+                    "tol": tol, "max_strain": max_strain, "gpc_tol": gpc_tol, "solver": backend,
                     **net.reference_parameters()},
-        inputs=inputs, data=data, status=outcome.record())
+        inputs=inputs, data=data)
+    outcome.status, outcome.message = judge(outcome, net.f_mm, mode=mode,
+                                            max_strain=max_strain, gpc_tol=gpc_tol)
+    result.status = outcome.record()
     result.metrics = summarize(result, mesh=mesh,
-                               against=net if mode == "isometric" else None)
+                               against=net if mode == "isometric" else None,
+                               surface=surface.scaled(1.0 / mm) if surface is not None else None)
     write_files(with_3dm(net_files(output, result), output, fmt), force=force)
     click.echo(str(out_json))
     log.info("%s: %s, %d iterations, R = %.3g", out_json, outcome.status, outcome.iterations,
              result.metrics["R"])
     if not outcome.converged:
-        raise NotConverged(f"did not reach the tolerance: {outcome.message}; written anyway",
-                           source=out_json)
+        raise NotConverged(f"{outcome.status.replace('_', ' ')}: {outcome.message}; written "
+                           "anyway", source=out_json)

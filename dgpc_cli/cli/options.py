@@ -9,6 +9,7 @@ import click
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths
+from dgpc_cli.io.units import UNIT_MM
 
 output_opt = click.option(
     "-o", "--output", "output", required=True, type=click.Path(dir_okay=False, path_type=Path),
@@ -16,8 +17,19 @@ output_opt = click.option(
 force_opt = click.option("--force", is_flag=True, help="Overwrite existing output files.")
 format_opt = click.option(
     "--format", "fmt", type=click.Choice(["obj", "3dm"]), default="obj", show_default=True,
-    help="Geometry format: with 3dm, also write STEM.3dm (Rhino, mm, named layers) beside the "
-         "OBJ and list it in the JSON (data.rhino_3dm).")
+    help="Geometry format: with 3dm, also write STEM.3dm (Rhino, in the artifact's unit, "
+         "layers per part) beside the OBJ and list it in the JSON (data.rhino_3dm).")
+units_check_opt = click.option(
+    "--units", "units_check", type=click.Choice(list(UNIT_MM)), default=None,
+    help="Only a check: the unit the input is in (its data.units, set by `init --units`); a "
+         "different one is a usage error. Nothing is converted by it.")
+
+
+def check_units(given: str | None, actual: str, source) -> None:
+    """A usage error (exit 2) naming both units when ``--units`` disagrees with the input."""
+    if given is not None and given != actual:
+        raise click.BadParameter(f"{given} given, but {source} is in {actual} (its data.units, "
+                                 "set by `dgpc init --units`)", param_hint="'--units'")
 
 
 def check_writable(stem: Path, force: bool, *extra: Path) -> None:
@@ -37,7 +49,8 @@ def show_progress(ctx) -> bool:
 
 
 def progressbar(ctx, length: int, label: str):
-    """A click progress bar on stderr (silent with -q)."""
+    """A click progress bar on stderr, on an interactive terminal only (silent with -q, and in
+    pipes and logs, where an error must be the only line)."""
     return click.progressbar(length=length, label=label, file=sys.stderr,
-                             show_eta=False, show_pos=True,
-                             hidden=not show_progress(ctx))
+                             show_eta=True, show_pos=True,
+                             hidden=not (show_progress(ctx) and sys.stderr.isatty()))

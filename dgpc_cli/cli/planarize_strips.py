@@ -74,7 +74,9 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, output, force
     columns = parse_strip_range(strip_range, n)
     outline = _outline(net, json_path) if trim else None
     with progressbar(ctx, len(columns), "planarize strips") as bar:
-        strips = planarize_strips(net.f, columns, flat_angle=flat_angle, progress=bar.update)
+        strips = [s.in_units(net.units) for s in
+                  planarize_strips(net.f_mm, columns, flat_angle=flat_angle,
+                                   progress=bar.update)]
     records = [s.record() for s in strips]
     if outline is not None:
         trims, notes = trim_records(strips, outline)
@@ -88,7 +90,7 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, output, force
     crossed = [s.id for s in strips if not s.rulings_ordered]
     art = StripsArtifact(
         geometry=[(s.A, s.B) for s in strips], records=records,
-        source_shape=(m, n),
+        source_shape=(m, n), units=net.units,
         parameters={"strips": [columns[0], columns[-1]], "flat_angle": flat_angle,
                     "polish_above": POLISH_ABOVE, "trim": trim},
         inputs={"net": file_input(json_path, out_json.resolve().parent)},

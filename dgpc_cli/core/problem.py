@@ -20,6 +20,11 @@ from dgpc_cli.core.solver import Schedule, Term
 #: geometry asked for). Fairness is always soft; a mode may add approximation (a reference the
 #: net cannot lie on exactly, e.g. a nearly developable fit, paper Fig. 8).
 SOFT_TERMS = ("fairness",)
+#: Terms bound to the net a drag starts from (``Problem.f_start``).
+START_TERMS = ("displacement_fairness", "closeness")
+#: Terms that only shape the solution (smoothness, staying put): in no residual norm and not
+#: in R.
+REGULARIZERS = ("fairness", "displacement_fairness", "closeness", "equal_u_edges")
 
 
 def mean_edge_length(f: np.ndarray) -> float:
@@ -48,6 +53,9 @@ class Problem:
     reference : object with ``closest(points) -> (p, n)`` and ``scaled(s)``, optional
     boundary_ids : array, optional
         Net vertices kept on the reference's boundary by the ``boundary`` term.
+    f_start : (m, n, 3) array, optional
+        The net a drag starts from (model units), for ``displacement_fairness`` and
+        ``closeness``.
     """
 
     layout: NetLayout
@@ -59,6 +67,7 @@ class Problem:
     reference: object | None = None
     soft: tuple[str, ...] = SOFT_TERMS
     boundary_ids: np.ndarray | None = None
+    f_start: np.ndarray | None = None
     _scaled_reference: object | None = field(default=None, init=False, repr=False)
 
     def active(self) -> list[str]:
@@ -77,6 +86,8 @@ class Problem:
                 continue
             if name == "isometry" and self.f0 is None:
                 continue
+            if name in START_TERMS and self.f_start is None:
+                continue
             names.append(name)
         return names
 
@@ -86,6 +97,9 @@ class Problem:
         if name == "isometry":
             w0, cos0 = isometry_data(lay, self.f0 / s)
             return lambda x: fn(x, lay, w0, cos0)
+        if name in START_TERMS:
+            start = np.asarray(self.f_start, dtype=float).reshape(-1, 3) / s
+            return lambda x: fn(x, lay, start)
         if name == "handles":
             ids = self.handle_ids
             p = (self.handle_targets if targets is None else targets) / s
@@ -103,7 +117,8 @@ class Problem:
     def terms(self, handle_targets=None) -> list[Term]:
         """Bound terms for the solver; ``handle_targets`` overrides the targets (handle steps)."""
         return [Term(name, self._bind(name, handle_targets), self.weights[name],
-                     hard=name not in self.soft)
+                     hard=name not in self.soft and name not in REGULARIZERS,
+                     regularizer=name in REGULARIZERS)
                 for name in self.active()]
 
     def x_from_vertices(self, f: np.ndarray) -> np.ndarray:
@@ -121,16 +136,19 @@ class Problem:
         """
         own = mean_edge_length(f)
         rescaled = Problem(self.layout, own, self.weights, self.f0, self.handle_ids,
-                           self.handle_targets, self.reference, self.soft, self.boundary_ids)
+                           self.handle_targets, self.reference, self.soft, self.boundary_ids,
+                           self.f_start)
         x = rescaled.x_from_vertices(f)
         return {t.name: float(np.linalg.norm(t.func(x)[0])) for t in rescaled.terms()}
 
 
-def constraint_error(norms: dict[str, float], weights: dict) -> float:
-    """The paper's R = (Σ φ_i²)^½ (§6.2.5) over the terms with a positive final weight.
+def constraint_error(norms: dict[str, float], weights: dict, soft=()) -> float:
+    """The paper's R = (Σ φ_i²)^½ (§6.2.5) over the hard terms with a positive final weight.
 
-    Fairness is a regularizer, not a constraint, and is left out.
+    Soft terms (``soft``: closeness to a reference the net need not lie on exactly) and the
+    regularizers (fairness, a drag's smoothness) are left out; their norms are listed apart.
     """
     sq = sum(v * v for k, v in norms.items()
-             if k != "fairness" and weights.get(k, Schedule.constant(0)).end > 0)
+             if k not in REGULARIZERS and k not in soft
+             and weights.get(k, Schedule.constant(0)).end > 0)
     return float(np.sqrt(sq))

@@ -12,8 +12,12 @@ from .. import __version__
 from ..errors import DgpcError
 from .jsonable import load_schema, read_json, schema_exists, to_jsonable, validate
 
-SCHEMA_VERSION = 1
-SUPPORTED_VERSIONS = (1,)
+#: Version 2: every artifact records its length unit, ``data.units`` (:mod:`.units`).
+SCHEMA_VERSION = 2
+SUPPORTED_VERSIONS = (2,)
+#: Why an artifact of an older version cannot be read, and what to do.
+OLDER_VERSIONS = {1: "it predates length units (data.units): re-run its pipeline from "
+                     "`dgpc init ... --units mm|cm|m|in|ft` with this dgpc"}
 KINDS = ("net", "mold", "strips", "flat", "sheets", "laths")
 ENVELOPE_KEYS = ("kind", "schema_version", "created_by", "inputs", "parameters", "data",
                  "metrics", "status")
@@ -146,6 +150,10 @@ def validate_envelope(doc: Any, kind: str, source: str | Path) -> None:
     if isinstance(found, str) and found != kind:
         raise DgpcError(f"kind: is a '{found}' artifact, expected '{kind}'", source=source)
     version = doc.get("schema_version")
+    if isinstance(version, int) and not isinstance(version, bool) \
+            and version in OLDER_VERSIONS:
+        raise DgpcError(f"schema_version: {version} is no longer read, {OLDER_VERSIONS[version]}",
+                        source=source)
     if isinstance(version, int) and not isinstance(version, bool) \
             and version not in SUPPORTED_VERSIONS:
         raise DgpcError(f"schema_version: {version} is not supported (supported: "

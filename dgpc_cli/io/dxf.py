@@ -1,26 +1,208 @@
-"""Deterministic DXF writing shared by the mold profile and the nesting sheets (SPEC §3, §9).
+"""Every DXF dgpc writes, and its previews (SPEC §3, §6, §9 ezdxf): one place for the format.
 
-ezdxf stamps creation dates and random GUIDs into a drawing, both when it is created and when
-it is written, unless its option ``write_fixed_meta_data_for_testing`` is set: every drawing
-is built and serialized inside :func:`fixed_metadata`. ezdxf also adds a CLASS per entity type
-in use by iterating a ``set`` of type names, whose order follows Python's per-process string
-hashing: :func:`dxf_bytes` sorts the CLASSES section before writing. The same input then gives
-the same bytes in every process.
-All drawings are DXF R2010 with ``$INSUNITS`` = 4 (mm).
+Callers describe a drawing in millimetres (:class:`Drawing`: layers, polylines, texts) and get
+its bytes from :meth:`Drawing.to_bytes`, which
+
+* drops zero-length segments (repeated points) and every segment drawn before (the same two
+  end points, either way round, on any layer: the first one drawn keeps it), so that a CAM
+  never cuts a line twice; a closed outline on a layer that holds closed outlines only
+  (``CUT``) is never split: a duplicate there is an error;
+* writes DXF R2010 with ``$INSUNITS`` = 4 (mm), ``$MEASUREMENT`` = 1 (metric), the layers with
+  their colours, linetypes and plot flags, ``$EXTMIN``/``$EXTMAX`` (and the limits and the
+  initial view) set to the drawing's extents;
+* runs ezdxf's ``audit()`` on the document before writing it: an error there is a
+  :class:`~dgpc_cli.errors.DgpcError` (exit 1), and nothing is written;
+* makes the bytes deterministic: ezdxf stamps creation dates and random GUIDs into a drawing
+  unless its option ``write_fixed_meta_data_for_testing`` is set (it is, meanwhile), and adds a
+  CLASS per entity type in the order of a ``set`` of type names (per-process string hashing:
+  the CLASSES section is sorted).
+
+Layer convention of the cut sheets (:data:`SHEET_LAYERS`, documented in the README): ``CUT``
+(red, 1) closed outlines to cut; ``SCORE`` (blue, 5) open bend/score lines; ``LABEL`` (green,
+3) part ids and leaders, to mark or to ignore; ``SHEET`` (grey, 8, dashed, not plotted) the
+sheet's border as four separate lines, for reference only. Previews (:func:`previews`) are
+rendered from the DXF bytes themselves by ezdxf's drawing add-on, in the layers' colours on
+white.
+
+Text boxes (:func:`text_box`) are estimated without fonts (every character as wide as the text
+is high), which is wider than the glyphs of the usual CAD fonts: a label placed by its box
+leaves room on every machine.
 """
 
 from __future__ import annotations
 
 import io
-from collections.abc import Callable
+from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
 
 import ezdxf
+import numpy as np
 from ezdxf import units
-from ezdxf.document import Drawing
+from ezdxf.enums import TextEntityAlignment
 
-#: Length units a net may be in, and their size in mm.
-UNIT_MM = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4, "ft": 304.8}
+from ..errors import DgpcError
+
+
+@dataclass(frozen=True)
+class Layer:
+    """A DXF layer: ACI ``color``, ``linetype``, whether it is plotted, and whether it holds
+    closed outlines only."""
+
+    color: int
+    linetype: str = "Continuous"
+    plot: bool = True
+    closed_only: bool = False
+
+
+#: The layers of a cut sheet (the convention of the module docstring).
+SHEET_LAYERS = {"SHEET": Layer(8, "DASHED", plot=False), "CUT": Layer(1, closed_only=True),
+                "SCORE": Layer(5), "LABEL": Layer(3)}
+#: Points closer than this (mm) are the same point: zero-length and duplicate segments.
+QUANTUM_MM = 1e-6
+#: Text box of :func:`text_box` around a middle-centred text of height h: width per character,
+#: depth below and height above the alignment point, in units of h.
+CHAR_WIDTH, BOX_BELOW, BOX_ABOVE = 1.0, 0.8, 0.6
+#: Text alignments :class:`Text` may have.
+ALIGNMENTS = {"MIDDLE_CENTER": TextEntityAlignment.MIDDLE_CENTER,
+              "MIDDLE_LEFT": TextEntityAlignment.MIDDLE_LEFT}
+
+
+@dataclass(frozen=True)
+class Text:
+    """A single-line TEXT: its ``at`` point is the middle of the text's centre line
+    (``MIDDLE_CENTER``) or of its left end (``MIDDLE_LEFT``); ``rotation`` in degrees."""
+
+    layer: str
+    text: str
+    at: tuple[float, float]
+    height: float
+    rotation: float = 0.0
+    align: str = "MIDDLE_CENTER"
+
+    def box(self) -> np.ndarray:
+        """The corners ``(4, 2)`` of its estimated box (:func:`text_box`)."""
+        return text_box(self.text, self.height, self.at, self.rotation, self.align)
+
+
+def text_box(text: str, height: float, at, rotation: float = 0.0,
+             align: str = "MIDDLE_CENTER") -> np.ndarray:
+    """Corners ``(4, 2)`` (counter-clockwise) of the box a text of ``height`` mm takes at
+    ``at`` turned by ``rotation`` degrees: ``len(text) × CHAR_WIDTH × height`` long, from
+    ``BOX_BELOW × height`` below to ``BOX_ABOVE × height`` above its centre line."""
+    w = len(text) * CHAR_WIDTH * height
+    x0 = -0.5 * w if align == "MIDDLE_CENTER" else 0.0
+    local = np.array([[x0, -BOX_BELOW * height], [x0 + w, -BOX_BELOW * height],
+                      [x0 + w, BOX_ABOVE * height], [x0, BOX_ABOVE * height]])
+    a = np.radians(rotation)
+    R = np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
+    return local @ R.T + np.asarray(at, float)
+
+
+@dataclass
+class Drawing:
+    """A drawing in mm: ``layers`` (name → :class:`Layer`), polylines and texts, in the order
+    they are drawn."""
+
+    layers: dict[str, Layer]
+    polylines: list[tuple[str, np.ndarray, bool]] = field(default_factory=list)
+    texts: list[Text] = field(default_factory=list)
+
+    def _layer(self, name: str) -> Layer:
+        if name not in self.layers:
+            raise ValueError(f"layer {name!r} is not a layer of this drawing")
+        return self.layers[name]
+
+    def polyline(self, layer: str, points, closed: bool = False) -> None:
+        """A polyline ``points (k, 2)``; closed ones only on a ``closed_only`` layer."""
+        if self._layer(layer).closed_only and not closed:
+            raise ValueError(f"layer {layer} holds closed outlines only")
+        self.polylines.append((layer, np.asarray(points, dtype=float).reshape(-1, 2), closed))
+
+    def line(self, layer: str, a, b) -> None:
+        """A segment from ``a`` to ``b``."""
+        self.polyline(layer, [a, b])
+
+    def text(self, layer: str, text: str, at, height: float, rotation: float = 0.0,
+             align: str = "MIDDLE_CENTER") -> None:
+        """A text (see :class:`Text`)."""
+        self._layer(layer)
+        if align not in ALIGNMENTS:
+            raise ValueError(f"alignment {align!r} is not one of {', '.join(ALIGNMENTS)}")
+        self.texts.append(Text(layer, text, (float(at[0]), float(at[1])), float(height),
+                               float(rotation), align))
+
+    def extents(self) -> tuple[np.ndarray, np.ndarray]:
+        """Lower-left and upper-right corners of everything drawn (text boxes included)."""
+        pts = [p for _, p, _ in self.polylines] + [t.box() for t in self.texts]
+        allp = np.concatenate(pts) if pts else np.zeros((1, 2))
+        return allp.min(axis=0), allp.max(axis=0)
+
+    def to_bytes(self, source: str | Path | None = None) -> bytes:
+        """The DXF bytes (see the module); DgpcError naming ``source`` when ezdxf's audit
+        finds an error."""
+        return _dxf_bytes(self, source)
+
+
+def _key(p: np.ndarray) -> tuple[int, int]:
+    q = np.round(p / QUANTUM_MM)
+    return int(q[0]), int(q[1])
+
+
+def _runs(points: np.ndarray, closed: bool, seen: set, layer: str, source
+          ) -> Iterator[tuple[np.ndarray, bool]]:
+    """The pieces of one polyline left after dropping repeated points and segments in
+    ``seen`` (which gets the kept ones): ``(points, closed)``."""
+    keys = [_key(p) for p in points]
+    pts, ks = [], []
+    for p, k in zip(points, keys, strict=True):
+        if not ks or k != ks[-1]:
+            pts.append(p)
+            ks.append(k)
+    if closed and len(ks) > 1 and ks[0] == ks[-1]:
+        pts, ks = pts[:-1], ks[:-1]
+    if len(ks) < 2 or (closed and len(ks) < 3):
+        return
+    n = len(ks)
+    count = n if closed else n - 1
+    segs = [(ks[i], ks[(i + 1) % n]) for i in range(count)]
+    fresh = []
+    for a, b in segs:
+        key = (a, b) if a <= b else (b, a)
+        fresh.append(key not in seen)
+        seen.add(key)
+    if closed and all(fresh):
+        yield np.asarray(pts), True
+        return
+    if closed and layer == "CUT":
+        raise DgpcError("internal: a cut outline repeats a line already drawn", source=source)
+    if closed:                      # start after a dropped segment, walk around once
+        start = fresh.index(False) + 1
+        order = [(start + i) % n for i in range(n + 1)]
+        seg_fresh = [fresh[(start + i) % n] for i in range(n)]
+    else:
+        order, seg_fresh = list(range(n)), fresh
+    run = [order[0]]
+    for i, ok in enumerate(seg_fresh):
+        if ok:
+            run.append(order[i + 1])
+        else:
+            if len(run) > 1:
+                yield np.asarray([pts[j] for j in run]), False
+            run = [order[i + 1]]
+    if len(run) > 1:
+        yield np.asarray([pts[j] for j in run]), False
+
+
+def clean(polylines: list[tuple[str, np.ndarray, bool]], source=None
+          ) -> list[tuple[str, np.ndarray, bool]]:
+    """The polylines without zero-length or repeated segments (see the module)."""
+    seen: set = set()
+    out = []
+    for layer, points, closed in polylines:
+        out += [(layer, p, c) for p, c in _runs(points, closed, seen, layer, source)]
+    return out
 
 
 @contextmanager
@@ -34,18 +216,7 @@ def fixed_metadata():
         ezdxf.options.write_fixed_meta_data_for_testing = old
 
 
-def new_mm_document(layers: dict[str, int], setup=("linetypes",)) -> Drawing:
-    """A new R2010 drawing in mm with ``layers`` (name → ACI colour); call inside
-    :func:`fixed_metadata`."""
-    doc = ezdxf.new("R2010", setup=list(setup), units=units.MM)
-    doc.header["$INSUNITS"] = units.MM
-    doc.header["$MEASUREMENT"] = 1
-    for name, color in layers.items():
-        doc.layers.add(name, color=color)
-    return doc
-
-
-def _sorted_classes(doc: Drawing) -> None:
+def _sorted_classes(doc) -> None:
     """Make the CLASSES section come out sorted by name whenever ezdxf completes it."""
     section = doc.classes
     complete = section.add_required_classes
@@ -59,12 +230,76 @@ def _sorted_classes(doc: Drawing) -> None:
     section.add_required_classes = add_required_classes
 
 
-def dxf_bytes(build: Callable[[], Drawing]) -> bytes:
-    """The bytes of the drawing made by ``build()``, created and written with fixed metadata
-    and a sorted CLASSES section."""
+def _document(drawing: Drawing, source):
+    doc = ezdxf.new("R2010", setup=["linetypes"], units=units.MM)
+    doc.header["$INSUNITS"] = units.MM
+    doc.header["$MEASUREMENT"] = 1
+    for name, layer in drawing.layers.items():
+        entry = doc.layers.add(name, color=layer.color, linetype=layer.linetype)
+        entry.dxf.plot = int(layer.plot)
+    msp = doc.modelspace()
+    for layer, points, closed in clean(drawing.polylines, source):
+        msp.add_lwpolyline([(float(x), float(y)) for x, y in points], format="xy",
+                           close=closed, dxfattribs={"layer": layer})
+    for t in drawing.texts:
+        msp.add_text(t.text, height=t.height, rotation=t.rotation,
+                     dxfattribs={"layer": t.layer}).set_placement(
+            t.at, align=ALIGNMENTS[t.align])
+    lo, hi = drawing.extents()
+    # ezdxf copies the model space's extents into the header when it writes, unless one of
+    # them is the zero vector: set both
+    for name, value in (("extmin", lo), ("extmax", hi)):
+        msp.dxf.set(name, (float(value[0]), float(value[1]), 0.0))
+        doc.header[f"${name.upper()}"] = (float(value[0]), float(value[1]), 0.0)
+    msp.dxf.limmin = (float(lo[0]), float(lo[1]))
+    msp.dxf.limmax = (float(hi[0]), float(hi[1]))
+    size = max(float(hi[1] - lo[1]), float(hi[0] - lo[0]) * 0.75, 1e-9)
+    doc.set_modelspace_vport(1.05 * size, center=(float(lo[0] + hi[0]) / 2,
+                                                  float(lo[1] + hi[1]) / 2))
+    return doc
+
+
+def _dxf_bytes(drawing: Drawing, source) -> bytes:
     with fixed_metadata():                 # creation and writing both stamp dates and GUIDs
-        doc = build()
+        doc = _document(drawing, source)
+        auditor = doc.audit()
+        if auditor.has_errors:
+            first = auditor.errors[0]
+            raise DgpcError(f"the DXF does not pass ezdxf's audit ({len(auditor.errors)} "
+                            f"errors, first: code {first.code}, {first.message}); nothing "
+                            "written", source=source)
         _sorted_classes(doc)
         stream = io.StringIO()
         doc.write(stream)
     return doc.encode(stream.getvalue())
+
+
+def previews(dxf: bytes, formats: tuple[str, ...] = ("svg", "png")) -> tuple[bytes, ...]:
+    """Previews of the DXF bytes ``dxf`` in ``formats`` (svg, png), rendered with ezdxf's
+    drawing add-on in the layers' colours on white; no metadata that changes between runs."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+    from ezdxf.addons.drawing import Frontend, RenderContext
+    from ezdxf.addons.drawing.config import BackgroundPolicy, ColorPolicy, Configuration
+    from ezdxf.addons.drawing.matplotlib import MatplotlibBackend
+
+    doc = ezdxf.read(io.StringIO(dxf.decode("utf-8", errors="replace")))
+    config = Configuration(background_policy=BackgroundPolicy.WHITE,
+                           color_policy=ColorPolicy.COLOR)
+    meta = {"svg": {"Date": None, "Creator": None}, "png": {"Software": None}}
+    out = []
+    with plt.rc_context({"svg.hashsalt": "dgpc", "svg.fonttype": "path"}):
+        fig = plt.figure(figsize=(10, 10 * 0.75))
+        try:
+            ax = fig.add_axes((0, 0, 1, 1))
+            Frontend(RenderContext(doc), MatplotlibBackend(ax), config=config).draw_layout(
+                doc.modelspace(), finalize=True)
+            for fmt in formats:
+                buf = io.BytesIO()
+                fig.savefig(buf, format=fmt, dpi=100, metadata=meta[fmt])
+                out.append(buf.getvalue())
+        finally:
+            plt.close(fig)
+    return tuple(out)

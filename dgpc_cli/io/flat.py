@@ -1,24 +1,33 @@
 """The ``flat`` artifact (SPEC §3, §6 unfold): developed strips as 2-D parts, STEM.json + STEM.obj.
 
 ``data.parts`` (in part-id order) carries per part everything the next stage (nest) needs, in
-the units of the net:
+the artifact's unit ``data.units`` (the net's):
 
-* ``id`` (the strip's stable id, e.g. ``S-v07``), ``strip`` (its column v), ``class``;
+* ``id`` (the strip's stable id, e.g. ``S-v07``, or a board's ``S-v07.2`` with
+  ``unfold --stock-length``), ``strip`` (its column v), ``board`` (1, 2, … along the strip;
+  1 for a whole strip), ``rows`` (the first and last net row it covers), ``positions`` (the
+  arc length along the strip's mid-curve of those two rows), ``class``;
 * ``outline``: the closed outline polygon, counter-clockwise, first point not repeated;
 * ``score``: open polylines (the interior rulings, bend/score lines);
 * ``label``: a point inside the part for its id;
 * ``geodesics``: the two developed boundary geodesics A and B (the vertices of the quads
-  ``A_u A_(u+1) B_(u+1) B_u``), ``straightness``, ``strain``, ``length``, ``area``;
+  ``A_u A_(u+1) B_(u+1) B_u``), ``straightness``, ``strain``, ``length`` (mean of the two
+  geodesics), ``width`` (least and largest distance between them), ``area``;
 * ``alignment``: the rigid motion ``x ↦ matrix·x + translation`` onto its class representative
   (with the boundary pairing used and whether it is a reflection) and its error.
 
 ``data.classes`` lists the congruence classes: ``id``, ``representative`` (a part id),
-``quantity``, ``members`` (part ids) and the largest member error. The OBJ holds the same parts
-(z = 0) as one object each, for viewers.
+``quantity``, ``members`` (part ids) and the largest member error. ``data.joints`` lists where
+boards meet: ``strip``, net ``row``, ``position`` (arc length along the strip) and the two
+``parts``. The OBJ holds the same parts (z = 0) as one object each, for viewers;
+``STEM.parts.csv`` (``data.files.parts_csv``) is the cut list, one line per part in mm
+(:data:`PART_COLUMNS`).
 """
 
 from __future__ import annotations
 
+import csv
+import io
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -29,10 +38,60 @@ from .artifact import (
     artifact_files,
     artifact_paths,
     load_envelope,
+    read_listed,
+    relative_input,
+    resolve_input,
 )
 from .strips import format_parts_obj, read_obj_checked
+from .units import DEFAULT_UNITS, mm_per_unit
 
 KIND = "flat"
+#: Gap between flat parts laid side by side, as a fraction of the tallest part's height.
+PART_GAP = 0.25
+#: Columns of a part in the cut lists (FLAT.parts.csv, and SHEETS.parts.csv around its
+#: placement): lengths in mm, the area in mm².
+PART_COLUMNS = ("id", "class", "strip", "board", "row_start", "row_stop", "start_mm",
+                "stop_mm", "length_mm", "width_min_mm", "width_max_mm", "area_mm2")
+
+
+def side_by_side(outlines: list[np.ndarray]) -> list[np.ndarray]:
+    """Translations ``(2,)`` that lay 2-D outlines side by side: left-aligned, one above the
+    other, :data:`PART_GAP` of the tallest one apart (so none overlaps another)."""
+    heights = [float(np.ptp(np.asarray(o)[:, 1])) for o in outlines]
+    gap = PART_GAP * max(heights, default=0.0)
+    out, y = [], 0.0
+    for o, h in zip(outlines, heights, strict=True):
+        o = np.asarray(o, float)
+        out.append(np.array([-o[:, 0].min(), y - o[:, 1].min()]))
+        y += h + gap
+    return out
+
+
+def part_row(part: dict, mm: float) -> dict:
+    """The :data:`PART_COLUMNS` of a part record whose lengths are ``mm`` mm per unit."""
+    return {"id": part["id"], "class": part["class"], "strip": part["strip"],
+            "board": part["board"], "row_start": part["rows"][0], "row_stop": part["rows"][1],
+            "start_mm": f"{mm * part['positions'][0]:.3f}",
+            "stop_mm": f"{mm * part['positions'][1]:.3f}",
+            "length_mm": f"{mm * part['length']:.3f}",
+            "width_min_mm": f"{mm * part['width'][0]:.3f}",
+            "width_max_mm": f"{mm * part['width'][1]:.3f}",
+            "area_mm2": f"{mm * mm * part['area']:.2f}"}
+
+
+def csv_bytes(columns: tuple, rows: list[dict]) -> bytes:
+    """CSV bytes with a header line of ``columns`` and one line per row dict."""
+    out = io.StringIO()
+    writer = csv.DictWriter(out, fieldnames=list(columns), lineterminator="\n")
+    writer.writeheader()
+    writer.writerows(rows)
+    return out.getvalue().encode("utf-8")
+
+
+def parts_csv(parts: list[dict], units: str) -> bytes:
+    """FLAT.parts.csv: the cut list, one line per part (in part order), mm."""
+    mm = mm_per_unit(units)
+    return csv_bytes(PART_COLUMNS, [part_row(p, mm) for p in parts])
 
 
 @dataclass
@@ -42,6 +101,8 @@ class FlatArtifact:
 
     parts: list
     classes: list
+    units: str = DEFAULT_UNITS
+    joints: list = field(default_factory=list)
     parameters: dict = field(default_factory=dict)
     inputs: dict = field(default_factory=dict)
     metrics: dict = field(default_factory=dict)
@@ -62,11 +123,24 @@ def _obj_bytes(parts: list) -> bytes:
                                       if p.get("trimmed")})
 
 
+def csv_path(stem: str | Path) -> Path:
+    """``STEM.parts.csv``."""
+    json_path, _ = artifact_paths(stem)
+    return json_path.with_suffix(".parts.csv")
+
+
 def flat_files(stem: str | Path, art: FlatArtifact) -> dict[Path, bytes]:
-    """The bytes of ``STEM.json`` and ``STEM.obj`` (nothing written), schema-checked."""
-    data = {"parts": art.parts, "classes": art.classes}
-    return artifact_files(KIND, stem, _obj_bytes(art.parts), data, inputs=art.inputs,
-                          parameters=art.parameters, metrics=art.metrics, status=art.status)
+    """The bytes of ``STEM.json``, ``STEM.obj`` and ``STEM.parts.csv`` (nothing written),
+    schema-checked."""
+    json_path, _ = artifact_paths(stem)
+    table = parts_csv(art.parts, art.units)
+    data = {"units": art.units, "parts": art.parts, "classes": art.classes,
+            "joints": art.joints,
+            "files": {"parts_csv": relative_input(csv_path(stem), json_path.resolve().parent,
+                                                  table)}}
+    files = artifact_files(KIND, stem, _obj_bytes(art.parts), data, inputs=art.inputs,
+                           parameters=art.parameters, metrics=art.metrics, status=art.status)
+    return {**files, csv_path(stem): table}
 
 
 def read_flat(stem: str | Path) -> FlatArtifact:
@@ -76,6 +150,9 @@ def read_flat(stem: str | Path) -> FlatArtifact:
     doc = load_envelope(json_path, KIND)
     data = doc["data"]
     read_obj_checked(json_path, obj_path, data["obj_sha256"])
+    for key, record in data["files"].items():
+        read_listed(resolve_input(record, json_path), record["sha256"], json_path,
+                    f"data.files.{key}")
     parts, classes = data["parts"], data["classes"]
     ids = [p["id"] for p in parts]
     if len(set(ids)) != len(ids):
@@ -87,5 +164,6 @@ def read_flat(stem: str | Path) -> FlatArtifact:
         if c["quantity"] != len(c["members"]) or c["representative"] not in c["members"]:
             raise DgpcError(f"data.classes[{i}]: quantity or representative does not match "
                             "its members", source=json_path)
-    return FlatArtifact(parts=parts, classes=classes, parameters=doc["parameters"],
+    return FlatArtifact(parts=parts, classes=classes, units=data["units"],
+                        joints=data["joints"], parameters=doc["parameters"],
                         inputs=doc["inputs"], metrics=doc["metrics"], status=doc["status"])

@@ -10,12 +10,13 @@ from ..errors import DgpcError
 from .jsonable import load_schema, read_json, validate
 
 
-def read_handles(path: str | Path, shape: tuple[int, int], f: np.ndarray
+def read_handles(path: str | Path, shape: tuple[int, int], f: np.ndarray, scale: float = 1.0
                  ) -> tuple[np.ndarray, np.ndarray]:
     """Vertex ids ``(l,)`` int64 (``u*n+v``) and targets ``(l, 3)`` of a handles file.
 
     Each entry is ``{"index": [u, v], "target": [x, y, z]}`` or ``{"index": [u, v],
     "offset": [dx, dy, dz]}`` (target = ``f[u, v] + offset``; ``f`` is the net ``(m, n, 3)``).
+    The file's numbers are multiplied by ``scale`` first (the net's unit to the mm of ``f``).
     DgpcError (one line naming the file and entry, e.g. ``handles[2].index``): missing or
     invalid JSON, schema violation, both or neither of target/offset, an index outside the
     m×n grid, a non-finite number, the same vertex twice, no handles.
@@ -35,7 +36,7 @@ def read_handles(path: str | Path, shape: tuple[int, int], f: np.ndarray
             raise DgpcError(f"handles[{k}].index: ({u}, {v}) is outside the {m} x {n} grid",
                             source=path)
         key = "target" if "target" in entry else "offset"
-        vec = np.asarray(entry[key], dtype=np.float64)
+        vec = np.asarray(entry[key], dtype=np.float64) * scale
         if not np.isfinite(vec).all():
             raise DgpcError(f"handles[{k}].{key}: non-finite number {entry[key]}", source=path)
         vid = u * n + v

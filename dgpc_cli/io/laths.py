@@ -60,14 +60,15 @@ def format_cut_list(laths, crossings) -> bytes:
     return ("\n".join(rows) + "\n").encode("ascii")
 
 
-def laths_files(stem: str | Path, laths, crossings, *, inputs: dict, parameters: dict,
-                metrics: dict) -> dict[Path, bytes]:
-    """The bytes of ``STEM.json``, ``STEM.obj`` and ``STEM.csv`` (nothing written)."""
+def laths_files(stem: str | Path, laths, crossings, *, units: str, inputs: dict,
+                parameters: dict, metrics: dict) -> dict[Path, bytes]:
+    """The bytes of ``STEM.json``, ``STEM.obj`` and ``STEM.csv`` (nothing written); lengths in
+    the nets' ``units``."""
     json_path, obj_path = artifact_paths(stem)
     csv_path = json_path.with_suffix(".csv")
     obj_bytes = format_laths_obj(laths)
     csv_bytes = format_cut_list(laths, crossings)
-    data = {"obj": obj_path.name, "obj_sha256": sha256_bytes(obj_bytes),
+    data = {"units": units, "obj": obj_path.name, "obj_sha256": sha256_bytes(obj_bytes),
             "cut_list": csv_path.name, "cut_list_sha256": sha256_bytes(csv_bytes),
             "laths": {"A": sum(lt.family == "A" for lt in laths),
                       "B": sum(lt.family == "B" for lt in laths)},

@@ -6,10 +6,14 @@ Files, all listed in ``data`` with their sha256:
   (N segments; the last one partial when N is not an integer); object ``sector``: the mold
   sector, just wide enough for the widest panel, its faces grouped by mold piece (``g M01``,
   …, ``g no-mold`` for rows that need none);
-* ``STEM.profile.csv`` — the meridian, header ``r,h``, in the net's unit (it reads back with
-  ``dgpc init --profile``);
-* ``STEM.profile.dxf`` — the meridian in mm with the axis drawn (:mod:`dgpc_cli.mold.dxf`);
-* ``STEM.panels.csv`` — the panel-to-mold map, one line per panel.
+* ``STEM.profile.csv`` — the meridian, header ``r,h``, in the nets' unit ``data.units`` (it
+  reads back with ``dgpc init --profile FILE --units UNIT``);
+* ``STEM.profile.dxf`` — the meridian in mm with the axis drawn (made by
+  :mod:`dgpc_cli.mold.dxf`, handed in as bytes);
+* ``STEM.panels.csv`` — the panel-to-mold map, one line per panel: its id, net, mold piece,
+  integer vertex rows and columns, angles on the mold, isometry error and flat flag;
+* ``STEM.panels.obj`` — the input nets (one object each, ``net1`` …) with their faces grouped
+  by panel id (``g P-u03-v07``), so that a facade model shows which panel is which.
 
 The JSON holds the profile (r, h, d, l, x), N and λ, the pieces and the panel-to-mold map.
 """
@@ -26,7 +30,6 @@ import numpy as np
 
 from .. import __version__
 from ..errors import DgpcError
-from ..mold.dxf import profile_dxf
 from .artifact import (
     artifact_files,
     artifact_paths,
@@ -40,7 +43,7 @@ from .obj import net_quads
 KIND = "mold"
 #: Extra files of a mold artifact: data.files key → suffix after the stem.
 EXTRA_FILES = {"profile_csv": ".profile.csv", "profile_dxf": ".profile.dxf",
-               "panels_csv": ".panels.csv"}
+               "panels_csv": ".panels.csv", "panels_obj": ".panels.obj"}
 
 
 def mold_paths(stem: str | Path) -> dict[str, Path]:
@@ -110,17 +113,39 @@ PANEL_COLUMNS = ("id", "net", "piece", "row_start", "row_stop", "col_start", "co
 
 
 def format_panels_csv(panels: list[dict]) -> bytes:
-    """The panel-to-mold map as CSV, one line per panel (``piece`` empty for flat panels)."""
+    """The panel-to-mold map as CSV, one line per panel (``piece`` empty for flat panels):
+    net as ``net1`` …, integer rows and columns, angles to 1e-6 degrees, errors to 4 digits."""
     out = io.StringIO()
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow(PANEL_COLUMNS)
     for p in panels:
         curv = p["curvature_max"]
-        writer.writerow([p["id"], p["net"], p["piece"] or "", *p["rows"], *p["cols"],
-                         *(repr(float(a)) for a in p["angle_deg"]),
-                         repr(float(p["isometry_error"])),
-                         "" if curv is None else repr(float(curv)), int(p["flat"])])
+        writer.writerow([p["id"], f"net{int(p['net']) + 1}", p["piece"] or "",
+                         *(int(i) for i in p["rows"]), *(int(i) for i in p["cols"]),
+                         *(f"{float(a):.6f}" for a in p["angle_deg"]),
+                         f"{float(p['isometry_error']):.4g}",
+                         "" if curv is None else f"{float(curv):.4g}", int(p["flat"])])
     return out.getvalue().encode("ascii")
+
+
+def format_panels_obj(nets: list[np.ndarray], panels: list[dict]) -> bytes:
+    """OBJ bytes of the nets ``f (m, n, 3)`` (objects ``net1`` …, vertices row-major) with
+    their quads grouped by panel (``g <panel id>``, the panels' order)."""
+    lines = [f"# dgpc {__version__}", "# the input nets, faces grouped by panel id"]
+    base = 1
+    for k, f in enumerate(nets):
+        f = np.asarray(f, float)
+        m, n = f.shape[:2]
+        quads = (net_quads(m, n) + base).reshape(m - 1, n - 1, 4)
+        lines.append(f"o net{k + 1}")
+        lines += [f"v {x!r} {y!r} {z!r}" for x, y, z in f.reshape(-1, 3).tolist()]
+        for p in (p for p in panels if p["net"] == k):
+            (r0, r1), (c0, c1) = p["rows"], p["cols"]
+            lines.append(f"g {p['id']}")
+            lines += [f"f {a} {b} {c} {d}" for a, b, c, d in
+                      quads[r0:r1, c0:c1].reshape(-1, 4).tolist()]
+        base += m * n
+    return ("\n".join(lines) + "\n").encode("ascii")
 
 
 @dataclass
@@ -134,6 +159,11 @@ class MoldArtifact:
     status: dict
 
     @property
+    def units(self) -> str:
+        """The length unit of the profile and every length (the nets')."""
+        return self.data["units"]
+
+    @property
     def r(self) -> np.ndarray:
         return np.asarray(self.data["profile"]["r"], dtype=float)
 
@@ -142,8 +172,9 @@ class MoldArtifact:
         return np.asarray(self.data["profile"]["h"], dtype=float)
 
 
-def mold_files(stem: str | Path, *, profile: dict, unit: str, segments: dict, sector_deg: float,
-               pieces: list[dict], nets: list[dict], panels: list[dict], panel_size: int,
+def mold_files(stem: str | Path, *, profile: dict, units: str, profile_dxf: bytes,
+               segments: dict, sector_deg: float, pieces: list[dict], nets: list[dict],
+               net_geometry: list[np.ndarray], panels: list[dict], panel_size: int,
                inputs: dict, parameters: dict, metrics: dict, status: dict
                ) -> dict[Path, bytes]:
     """The bytes of every file of the artifact (nothing written), the JSON checked against
@@ -160,12 +191,13 @@ def mold_files(stem: str | Path, *, profile: dict, unit: str, segments: dict, se
     files = {
         "obj": format_mold_obj(r, h, segments["segments"], math.radians(sector_deg), triples),
         "profile_csv": format_profile_csv(r, h),
-        "profile_dxf": profile_dxf(r, h, unit, triples),
+        "profile_dxf": profile_dxf,
         "panels_csv": format_panels_csv(panels),
+        "panels_obj": format_panels_obj(net_geometry, panels),
     }
     data = {
         "rows": int(r.size),
-        "unit": unit,
+        "units": units,
         "axis": {"point": [0.0, 0.0, 0.0], "direction": [0.0, 0.0, 1.0]},
         "profile": {k: np.asarray(v, float).tolist() for k, v in profile.items()},
         **segments,

@@ -16,19 +16,23 @@ from .artifact import (
 )
 from .atomic import write_files
 from .obj import format_net_obj, parse_net_obj
+from .units import DEFAULT_UNITS, stored, to_mm
 
 KIND = "net"
 
 
 @dataclass
 class NetArtifact:
-    """A net ``f (m, n, 3)`` with the envelope fields of its artifact (SPEC §3).
+    """A net ``f (m, n, 3)`` in the length unit ``units`` with the envelope fields of its
+    artifact (SPEC §3).
 
-    ``data`` holds what the OBJ cannot (``shape``, ``geodesic_family``, ``obj``, ``obj_sha256``
-    are filled in by :func:`write_net`; callers add e.g. ``surface``, ``handles``, ``reference``).
+    ``data`` holds what the OBJ cannot (``shape``, ``geodesic_family``, ``units``, ``obj``,
+    ``obj_sha256`` are filled in by :func:`write_net`; callers add e.g. ``surface``,
+    ``handles``, ``reference``).
     """
 
     f: np.ndarray
+    units: str = DEFAULT_UNITS
     parameters: dict = field(default_factory=dict)
     inputs: dict = field(default_factory=dict)
     data: dict = field(default_factory=dict)
@@ -39,6 +43,11 @@ class NetArtifact:
     def shape(self) -> tuple[int, int]:
         """Grid size ``(m, n)``."""
         return int(self.f.shape[0]), int(self.f.shape[1])
+
+    @property
+    def f_mm(self) -> np.ndarray:
+        """The net in millimetres, where the stages compute (:mod:`dgpc_cli.io.units`)."""
+        return to_mm(self.f, self.units)
 
     @property
     def reference_pieces(self) -> str:
@@ -76,9 +85,9 @@ def net_files(stem: str | Path, net: NetArtifact) -> dict[Path, bytes]:
     """The bytes of ``STEM.json`` and ``STEM.obj`` (nothing written), checked against
     ``net.schema.json``; to be written with other files in one :func:`write_files` call."""
     json_path, _ = artifact_paths(stem)
-    f = check_net_array(net.f, json_path)
+    f = stored(check_net_array(net.f, json_path), net.units)
     m, n = f.shape[:2]
-    data = {**net.data, "shape": [m, n], "geodesic_family": "u"}
+    data = {**net.data, "shape": [m, n], "geodesic_family": "u", "units": net.units}
     return artifact_files(KIND, stem, format_net_obj(f), data, inputs=net.inputs,
                           parameters=net.parameters, metrics=net.metrics, status=net.status)
 
@@ -102,5 +111,6 @@ def read_net(stem: str | Path) -> NetArtifact:
     m, n = data["shape"]
     obj_bytes = read_listed(obj_path, data["obj_sha256"], json_path, "data.obj_sha256")
     f = parse_net_obj(obj_bytes, m, n, obj_path)
-    return NetArtifact(f=f, parameters=doc["parameters"], inputs=doc["inputs"], data=data,
-                       metrics=doc["metrics"], status=doc["status"])
+    return NetArtifact(f=f, units=data["units"], parameters=doc["parameters"],
+                       inputs=doc["inputs"], data=data, metrics=doc["metrics"],
+                       status=doc["status"])

@@ -22,6 +22,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from ..errors import DgpcError
 from .artifact import (
     artifact_files,
@@ -35,6 +37,23 @@ from .artifact import (
 KIND = "sheets"
 #: Gap between sheets in the OBJ, as a fraction of the sheet width.
 OBJ_SHEET_GAP = 0.1
+
+
+def rotation_matrix(deg: float) -> np.ndarray:
+    """2×2 rotation by ``deg`` degrees, exact for multiples of 90°."""
+    quarter = float(deg) / 90.0
+    if quarter == round(quarter):
+        c, s = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)][int(round(quarter)) % 4]
+    else:
+        a = np.radians(deg)
+        c, s = float(np.cos(a)), float(np.sin(a))
+    return np.array([[c, -s], [s, c]])
+
+
+def transform(points: np.ndarray, rotation: float, translation) -> np.ndarray:
+    """``R(rotation) · points + translation`` for ``points (..., 2)``."""
+    return np.asarray(points, float) @ rotation_matrix(rotation).T + np.asarray(translation,
+                                                                                 float)
 
 
 def extra_path(stem: str | Path, key: str) -> Path:

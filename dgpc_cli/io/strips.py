@@ -22,6 +22,7 @@ from .artifact import (
     read_listed,
 )
 from .obj import _vertex_rows
+from .units import DEFAULT_UNITS, stored
 
 KIND = "strips"
 
@@ -92,12 +93,14 @@ def read_obj_checked(json_path: Path, obj_path: Path, sha256: str) -> bytes:
 
 @dataclass
 class StripsArtifact:
-    """Planar-quad strips: ``geometry[i] = (A, B)`` with ``A, B (m, 3)`` and the JSON record
-    ``records[i]`` (``id``, ``v``, ``rows``, quality, rulings), plus the envelope fields."""
+    """Planar-quad strips: ``geometry[i] = (A, B)`` with ``A, B (m, 3)`` in ``units`` and the
+    JSON record ``records[i]`` (``id``, ``v``, ``rows``, quality, rulings), plus the envelope
+    fields."""
 
     geometry: list
     records: list
     source_shape: tuple
+    units: str = DEFAULT_UNITS
     parameters: dict = field(default_factory=dict)
     inputs: dict = field(default_factory=dict)
     metrics: dict = field(default_factory=dict)
@@ -108,9 +111,10 @@ def strips_files(stem: str | Path, art: StripsArtifact) -> dict[Path, bytes]:
     """The bytes of ``STEM.json`` and ``STEM.obj`` (nothing written), schema-checked."""
     ids = [r["id"] for r in art.records]
     obj_bytes = format_parts_obj(f"strips of planar quads ({len(ids)})",
-                                 [(i, A, B) for i, (A, B) in zip(ids, art.geometry, strict=True)])
+                                 [(i, stored(A, art.units), stored(B, art.units))
+                                  for i, (A, B) in zip(ids, art.geometry, strict=True)])
     data = {"source_shape": list(art.source_shape), "geodesic_family": "u",
-            "strips": art.records}
+            "units": art.units, "strips": art.records}
     return artifact_files(KIND, stem, obj_bytes, data, inputs=art.inputs,
                           parameters=art.parameters, metrics=art.metrics, status=art.status)
 
@@ -124,6 +128,6 @@ def read_strips(stem: str | Path) -> StripsArtifact:
     records = data["strips"]
     geometry = parse_parts_obj(obj_bytes, [r["rows"] for r in records], obj_path)
     return StripsArtifact(geometry=geometry, records=records,
-                          source_shape=tuple(data["source_shape"]),
+                          source_shape=tuple(data["source_shape"]), units=data["units"],
                           parameters=doc["parameters"], inputs=doc["inputs"],
                           metrics=doc["metrics"], status=doc["status"])

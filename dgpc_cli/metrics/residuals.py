@@ -9,7 +9,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from dgpc_cli.metrics.frames import as_grid, corner_angles, edge_lengths, tangent_frames
+from dgpc_cli.metrics.frames import (
+    as_grid,
+    corner_angles,
+    edge_lengths,
+    tangent_frames,
+    unit,
+)
 from dgpc_cli.tolerances import tol
 
 __all__ = [
@@ -20,9 +26,11 @@ __all__ = [
     "gpc_angle_defect_max",
     "jacobi_residual",
     "orthogonality",
+    "pleat",
     "ratio_spread",
     "spread",
     "strip_width_spread",
+    "u_edge_spread",
 ]
 
 
@@ -93,6 +101,53 @@ def strip_width_spread(f) -> np.ndarray:
     """
     _, lv = edge_lengths(f)
     return spread(lv, axis=1)
+
+
+def u_edge_spread(f) -> np.ndarray:
+    """Per row step u → u+1 the relative spread ``(max − min)/mean`` of its u-edge lengths
+    across the columns, shape ``(m − 1,)``.
+
+    Zero when the strips of a net isometric to a surface of revolution are congruent
+    (§4.2.1); what a revolution-mode drag leaves of it is the congruence error of the strips.
+    """
+    lu, _ = edge_lengths(f)
+    return spread(lu, axis=1)
+
+
+#: Rows over which the pleat measure averages (a pleat runs along the geodesics; noise does not).
+PLEAT_WINDOW = 5
+
+
+def pleat(f) -> np.ndarray:
+    """Period-2 corrugation across the geodesics, shape ``(m, n − 5)`` (empty for n < 6), in
+    units of the net's mean edge length.
+
+    Along each row, the second differences s(v) = f(v−1) − 2 f(v) + f(v+1), their alternating
+    part a(v) = s(v) − (s(v−1) + s(v+1))/2 and its change (a(v) − a(v+1))/2, along the net's
+    normal, divided by 8 and averaged (signed) over ``PLEAT_WINDOW`` consecutive rows. For the
+    pleated nets of the isometry study (even and odd meridians on two profiles, offset ±p
+    along the normal) it is p; for a smooth net it is a fifth difference, O(h⁵/ρ⁴), small even
+    on coarse nets of curved surfaces. Unevenly spaced vertices along a row (a tangential
+    change) and noise uncorrelated along the geodesics (shrunk by the average over rows) are
+    not pleats.
+    """
+    f = as_grid(f)
+    m, n, _ = f.shape
+    if n < 6:
+        return np.zeros((m, 0))
+    s = f[:, :-2] - 2.0 * f[:, 1:-1] + f[:, 2:]
+    a = s[:, 1:-1] - 0.5 * (s[:, :-2] + s[:, 2:])          # at vertices 2 … n−3
+    d = 0.5 * (a[:, :-1] - a[:, 1:])                        # between vertices v, v+1
+    _, _, N = tangent_frames(f, one_sided=True)
+    normal = unit(N[:, 2:-3] + N[:, 3:-2])
+    lu, lv = edge_lengths(f)
+    mean = (lu.sum() + lv.sum()) / (lu.size + lv.size)
+    signed = np.einsum("uvk,uvk->uv", d, normal) / (8.0 * mean)
+    k = min(PLEAT_WINDOW, m)
+    c = np.concatenate([np.zeros((1, signed.shape[1])), np.cumsum(signed, axis=0)])
+    window = (c[k:] - c[:-k]) / k                           # (m − k + 1, n − 5)
+    lo = np.clip(np.arange(m) - k // 2, 0, m - k)           # the window centred at each row
+    return np.abs(window[lo])
 
 
 def ratio_spread(f) -> np.ndarray:

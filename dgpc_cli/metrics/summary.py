@@ -10,6 +10,7 @@ from dgpc_cli.metrics.clairaut import as_axis, clairaut
 from dgpc_cli.metrics.coverage import coverage
 from dgpc_cli.metrics.curvature import gaussian_curvature
 from dgpc_cli.metrics.frames import as_grid
+from dgpc_cli.metrics.freeform import parallel_departure
 from dgpc_cli.metrics.hausdorff import hausdorff
 from dgpc_cli.metrics.residuals import (
     arclength_spread,
@@ -18,8 +19,10 @@ from dgpc_cli.metrics.residuals import (
     gpc_angle_defect,
     jacobi_residual,
     orthogonality,
+    pleat,
     ratio_spread,
     strip_width_spread,
+    u_edge_spread,
 )
 from dgpc_cli.metrics.strain import strain
 
@@ -58,8 +61,12 @@ def net_metrics(f, *, axis=None, against=None, reference=None) -> dict:
 
         shape [m, n]; gpc_angle_defect_max (rad, Prop. 2.7 (ii)); orthogonality_max
         (|⟨T^u, T^v⟩|, Lemma 2.5); arclength_spread_max (§5.1); strip_width_spread_max ((7));
-        ratio_spread_max ((5)); jacobi_residual_max (|(2)| / mean v-edge);
-        edges {min, mean, max, min_ratio, folded}; gaussian_curvature {min, max, mean} ((1))
+        ratio_spread_max ((5)); u_spread_max (u-edges per row, §4.2.1); pleat_max
+        (period-2 corrugation across the geodesics, × mean edge); jacobi_residual_max
+        (|(2)| / mean v-edge);
+        edges {min, mean, max, min_ratio, folded}; gaussian_curvature {min, max, mean} ((1));
+        parallel_departure {max, relative, row} (rows against their best-fit circles: 0 on a
+        surface of revolution)
 
     and, when given, ``clairaut`` (axis: ``(point, direction)`` or ``"px,py,pz,dx,dy,dz"``;
     equation (9), see :func:`~dgpc_cli.metrics.clairaut.clairaut`), ``strain`` {max, mean}
@@ -78,9 +85,12 @@ def net_metrics(f, *, axis=None, against=None, reference=None) -> dict:
         "arclength_spread_max": finite_max(arclength_spread(f)),
         "strip_width_spread_max": finite_max(strip_width_spread(f)),
         "ratio_spread_max": finite_max(ratio_spread(f)),
+        "u_spread_max": finite_max(u_edge_spread(f)),
+        "pleat_max": finite_max(pleat(f)) or 0.0,
         "jacobi_residual_max": finite_max(jacobi_residual(f), absolute=True),
         "edges": edge_length_stats(f),
         "gaussian_curvature": _stats(gaussian_curvature(f)),
+        "parallel_departure": parallel_departure(f),
     }
     if axis is not None:
         out["clairaut"] = clairaut(f, as_axis(axis))

@@ -19,6 +19,10 @@ import numpy as np
 import shapely
 from shapely.geometry import Polygon
 
+from ..io.sheets import rotation_matrix, transform
+
+__all__ = ["rotation_matrix", "transform"]  # the placement of the sheets artifact, used here
+
 #: Clearance added to every spacing and margin (mm): keeps touching parts apart by more than
 #: floating-point noise, far below any cutter's precision.
 CLEARANCE_MM = 1e-4
@@ -37,28 +41,12 @@ def group_tolerance(spacing: float) -> float:
     return max(GROUP_TOL_MM, GROUP_SPACING_FRACTION * spacing)
 
 
-def rotation_matrix(deg: float) -> np.ndarray:
-    """2×2 rotation by ``deg`` degrees, exact for multiples of 90°."""
-    quarter = float(deg) / 90.0
-    if quarter == round(quarter):
-        c, s = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)][int(round(quarter)) % 4]
-    else:
-        a = np.radians(deg)
-        c, s = float(np.cos(a)), float(np.sin(a))
-    return np.array([[c, -s], [s, c]])
-
-
-def transform(points: np.ndarray, rotation: float, translation) -> np.ndarray:
-    """``R(rotation) · points + translation`` for ``points (..., 2)``."""
-    return np.asarray(points, float) @ rotation_matrix(rotation).T + np.asarray(translation,
-                                                                                 float)
-
-
 @dataclass
 class Part:
     """One flat part in mm: ``outline (n, 2)`` ccw, ``score`` open polylines, ``label`` point,
-    ``pieces (k, 4, 2)`` convex pieces (triangles repeat a vertex), ``group`` index of parts
-    sharing no-fit polygons and ``deviation`` from the group's leader (mm)."""
+    ``geodesics`` its two developed geodesics ``A, B (m, 2)``, ``pieces (k, 4, 2)`` convex
+    pieces (triangles repeat a vertex), ``group`` index of parts sharing no-fit polygons and
+    ``deviation`` from the group's leader (mm)."""
 
     id: str
     strip: int
@@ -66,8 +54,8 @@ class Part:
     outline: np.ndarray
     score: list
     label: np.ndarray
+    geodesics: list
     area: float
-    width: float
     pieces: np.ndarray = field(repr=False)
     group: int = 0
     deviation: float = 0.0
@@ -113,9 +101,8 @@ def prepare_parts(flat_parts: list[dict], k: float, tol: float = GROUP_TOL_MM) -
         parts.append(Part(
             id=rec["id"], strip=int(rec["strip"]), cls=rec["class"], outline=outline,
             score=[k * np.asarray(s, float) for s in rec["score"]],
-            label=k * np.asarray(rec["label"], float), area=float(poly.area),
-            width=float(poly.area / max(k * rec["length"], 1e-300)),
-            pieces=convex_pieces(outline, geod)))
+            label=k * np.asarray(rec["label"], float), geodesics=geod,
+            area=float(poly.area), pieces=convex_pieces(outline, geod)))
     leaders: list[int] = []
     for i, p in enumerate(parts):
         for g, j in enumerate(leaders):

@@ -1,7 +1,8 @@
 """The ``index.html`` of ``dgpc report``: plain HTML (no script), deterministic.
 
 The page shows each figure (``<img>`` with a relative link) with its caption, then the
-artifact's ``metrics`` and ``status`` flattened to rows ``dotted.key → value``.
+artifact's ``metrics`` and ``status`` flattened to rows ``dotted.key → value`` with the unit of
+every length, area and curvature among them (:func:`metric_unit`, the artifact's ``data.units``).
 """
 
 from __future__ import annotations
@@ -11,6 +12,28 @@ from html import escape
 
 #: Lists of numbers longer than this are summarised (count, min, max) rather than listed.
 LIST_MAX = 12
+#: Metrics (last part of the dotted key) that are lengths in the artifact's unit.
+LENGTHS = {"length", "width", "height", "profile_length", "radius_max", "radius_min",
+           "total_length", "length_total", "length_max", "crossing_gap_max", "diagonal",
+           "jacobi_residual_max", "vertex_distance_max", "mean_radius", "mean_abs", "max_mad",
+           "net_to_reference_max", "net_to_reference_mean", "reference_to_net_max",
+           "reference_to_net_mean"}
+#: ... that are areas.
+AREAS = {"total_area", "covered_area", "reference_area"}
+
+
+def metric_unit(key: str, units: str) -> str:
+    """The unit of the metric at the dotted ``key`` (``""``: a count, a ratio, an angle …)."""
+    parts = key.split(".")
+    head, last = parts[0], parts[-1].split("[")[0]
+    if last in AREAS:
+        return f"{units}²"
+    if head == "gaussian_curvature":
+        return f"1/{units}²"
+    if (last in LENGTHS or (head in ("edges", "hausdorff") and last in ("min", "max", "mean"))
+            or (head == "clairaut" and last in ("mean", "mad"))):
+        return units
+    return ""
 
 
 def format_value(value) -> str:
@@ -55,18 +78,20 @@ def flatten(obj, prefix: str = "") -> list[tuple[str, str]]:
     return [(prefix, format_value(obj))]
 
 
-def _table(rows: list[tuple[str, str]]) -> list[str]:
+def _table(rows: list[tuple[str, str]], units: str) -> list[str]:
     if not rows:
         return ["<p>(none)</p>"]
-    out = ["<table>", "<tr><th>name</th><th>value</th></tr>"]
-    out += [f"<tr><td>{escape(k)}</td><td>{escape(v)}</td></tr>" for k, v in rows]
+    out = ["<table>", "<tr><th>name</th><th>value</th><th>unit</th></tr>"]
+    out += [f"<tr><td>{escape(k)}</td><td>{escape(v)}</td>"
+            f"<td>{escape(metric_unit(k, units))}</td></tr>" for k, v in rows]
     out.append("</table>")
     return out
 
 
 def index_html(*, title: str, kind: str, source: str, figures: list[tuple[str, str]],
-               metrics: dict, status: dict) -> bytes:
-    """The page: ``figures`` as ``(relative href, caption)``, then metrics and status."""
+               metrics: dict, status: dict, units: str) -> bytes:
+    """The page: ``figures`` as ``(relative href, caption)``, then metrics and status, lengths
+    in ``units``."""
     lines = [
         "<!DOCTYPE html>",
         '<html lang="en">',
@@ -79,7 +104,8 @@ def index_html(*, title: str, kind: str, source: str, figures: list[tuple[str, s
         "</head>",
         "<body>",
         f"<h1>{escape(title)}</h1>",
-        f"<p>Artifact <code>{escape(source)}</code>, kind <b>{escape(kind)}</b>.</p>",
+        f"<p>Artifact <code>{escape(source)}</code>, kind <b>{escape(kind)}</b>, lengths in "
+        f"<b>{escape(units)}</b>.</p>",
         "<h2>Figures</h2>",
     ]
     if not figures:
@@ -91,8 +117,8 @@ def index_html(*, title: str, kind: str, source: str, figures: list[tuple[str, s
                   f"<figcaption>{escape(caption)}</figcaption>",
                   "</figure>"]
     lines.append("<h2>Metrics</h2>")
-    lines += _table(flatten(metrics))
+    lines += _table(flatten(metrics), units)
     lines.append("<h2>Status</h2>")
-    lines += _table(flatten(status))
+    lines += _table(flatten(status), units)
     lines += ["</body>", "</html>", ""]
     return "\n".join(lines).encode("utf-8")

@@ -134,7 +134,7 @@ def polylines_png(families: list[list[np.ndarray]], names: list[str], *, title: 
     return png_bytes(fig)
 
 
-def clairaut_png(values: np.ndarray, f: np.ndarray, *, title: str) -> bytes:
+def clairaut_png(values: np.ndarray, f: np.ndarray, *, title: str, units: str) -> bytes:
     """Paper Fig. 11: ``r cos α`` (``values (m, n)``) along every geodesic (u-line, column j of
     ``f (m, n, 3)``) against the arclength along it; constant for a geodesic (9)."""
     from matplotlib import colormaps
@@ -150,8 +150,8 @@ def clairaut_png(values: np.ndarray, f: np.ndarray, *, title: str) -> bytes:
                                                             axis=-1))])
         ax.plot(s, values[:, j], lw=0.8, marker=".", ms=2,
                 color=cmap(j / max(n - 1, 1)))
-    ax.set_xlabel("arclength along the geodesic", fontsize=8)
-    ax.set_ylabel("r cos α", fontsize=8)
+    ax.set_xlabel(f"arclength along the geodesic [{units}]", fontsize=8)
+    ax.set_ylabel(f"r cos α [{units}]", fontsize=8)
     ax.set_title(title, fontsize=9)
     ax.grid(True, lw=0.3)
     ax.tick_params(labelsize=7)
@@ -160,7 +160,13 @@ def clairaut_png(values: np.ndarray, f: np.ndarray, *, title: str) -> bytes:
 
 
 def profile_png(r: np.ndarray, h: np.ndarray, *, unit: str, title: str) -> bytes:
-    """The mold's meridian ``(r, h)`` with its mirror image and the axis, equal scales."""
+    """PNG of :func:`profile_figure`."""
+    return png_bytes(profile_figure(r, h, unit=unit, title=title))
+
+
+def profile_figure(r: np.ndarray, h: np.ndarray, *, unit: str, title: str):
+    """The mold's meridian ``(r, h)`` with its mirror image and the axis, equal scales, the
+    axes labelled in ``unit``."""
     r, h = np.asarray(r, float), np.asarray(h, float)
     fig = figure(5.0, 6.0)
     ax = fig.add_subplot(1, 1, 1)
@@ -175,4 +181,4 @@ def profile_png(r: np.ndarray, h: np.ndarray, *, unit: str, title: str) -> bytes
     ax.grid(True, lw=0.3)
     ax.tick_params(labelsize=7)
     fig.tight_layout()
-    return png_bytes(fig)
+    return fig

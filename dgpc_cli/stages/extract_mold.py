@@ -9,6 +9,8 @@ the panel-to-mold map (SPEC §6, paper §4.2.2, Prop. 4.3, §6.2.3, Fig. 1, 16, 
 3. Every K×K panel of every net is compared with its patch on the mold (edges and diagonals),
    flagged flat where κ = −δ_uu w / w ≈ 0, and assigned a mold piece: the sector just wide enough
    for the widest panel, cut along the meridian into pieces no longer than the limit.
+4. A panel further off its mold patch than ``max_strain`` cannot be pressed on it: the nets are
+   refused, naming the worst panel.
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dgpc_cli.errors import DgpcError
 from dgpc_cli.mold.panels import (
     Piece,
     block_max,
@@ -37,11 +40,17 @@ from dgpc_cli.mold.profile import (
     mold_grid,
     net_widths,
 )
+from dgpc_cli.tolerances import tol as TOL
 
 log = logging.getLogger(__name__)
 
 #: Defaults of the options (SPEC §2: every resolved default is recorded in the artifact).
-DEFAULT_TOL = 1e-6
+#: The largest relative difference of a panel's edges and diagonals from its mold patch.
+DEFAULT_MAX_STRAIN = TOL.max_strain
+#: Equation (5) within twice that: a net whose panels meet it spreads its ratios by at most
+#: about 2 × the strain; it also accepts nets written with 7 significant digits (float32).
+DEFAULT_TOL_FACTOR = 2.0
+DEFAULT_TOL = DEFAULT_TOL_FACTOR * DEFAULT_MAX_STRAIN
 DEFAULT_FLAT_TOL = 1e-5
 DEFAULT_PANEL_SIZE = 1
 
@@ -123,12 +132,13 @@ class Mold:
 def extract_mold(nets: list[tuple[str, np.ndarray]], *, segments: float | None = None,
                  lam: float | None = None, panel_size: int = DEFAULT_PANEL_SIZE,
                  flat_tol: float = DEFAULT_FLAT_TOL, max_length: float | None = None,
-                 tol: float = DEFAULT_TOL) -> Mold:
+                 tol: float = DEFAULT_TOL, max_strain: float = DEFAULT_MAX_STRAIN) -> Mold:
     """The mold of the nets ``[(name, f (m, n_k, 3)), …]`` (names are used in messages).
 
     ``segments`` (N) and ``lam`` (λ = N/(n−1), n of the first net) are exclusive; neither gives
     one full turn. Raises DgpcError naming the net (or option) at fault: (5) fails beyond
-    ``tol``, a net differs from the first, a panel row is longer than ``max_length``.
+    ``tol``, a net differs from the first, a panel is further than ``max_strain`` from its
+    mold patch, a panel row is longer than ``max_length``.
     """
     if segments is not None and lam is not None:
         raise ValueError("give segments or lam, not both")
@@ -163,11 +173,32 @@ def extract_mold(nets: list[tuple[str, np.ndarray]], *, segments: float | None =
         log.info("%s: %d×%d panels, isometry error ≤ %.3g, %d flat", name, *error.shape,
                  float(error.max()), int(per_net[-1].flat.sum()))
 
+    _check_panels(per_net, row_starts, K, max_strain, prefix=len(nets) > 1)
     needs_mold = np.any(np.stack([~p.flat.all(axis=1) for p in per_net]), axis=0)
     pieces, piece_of_row = cut_pieces(rows, needs_mold, mer.l, max_length)
     sector = max(float(np.radians(np.diff(p.angles, axis=1)).max()) for p in per_net)
     return Mold(meridian=mer, nets=per_net, rows=rows, pieces=pieces,
                 piece_of_row=piece_of_row, sector_angle=sector, panel_size=K)
+
+
+def _check_panels(per_net: list[NetPanels], row_starts: np.ndarray, K: int, max_strain: float,
+                  prefix: bool) -> None:
+    """DgpcError naming the net and its worst panel when a panel is further than
+    ``max_strain`` from its mold patch."""
+    worst = max(range(len(per_net)), key=lambda k: float(per_net[k].error.max()))
+    net = per_net[worst]
+    err = float(net.error.max())
+    if err <= max_strain:
+        return
+    i, j = np.unravel_index(int(np.argmax(net.error)), net.error.shape)
+    width = max(2, len(str(max(len(row_starts), net.cols.shape[0]))))
+    pid = panel_id(int(i), int(j), width, f"N{worst + 1}-" if prefix else "")
+    bad = int((net.error > max_strain).sum())
+    raise DgpcError(f"panel {pid} (rows {int(i) * K}-{min(int(i) * K + K, net.shape[0] - 1)}) "
+                    f"is {err:.3g} off its mold patch (largest relative difference of its "
+                    f"edges and diagonals), more than --max-strain {max_strain:g}; {bad} of "
+                    f"{net.error.size} panels are: the net is not isometric to the surface of "
+                    "revolution closely enough to be pressed on one mold", source=net.name)
 
 
 def inspect_mold(mold) -> dict:
@@ -179,7 +210,7 @@ def inspect_mold(mold) -> dict:
     return {
         **mold.metrics,
         "profile": {"r": mold.data["profile"]["r"], "h": mold.data["profile"]["h"],
-                    "unit": mold.data["unit"]},
+                    "units": mold.data["units"]},
         "pieces": len(mold.data["pieces"]),
         "panels": len(panels),
         "panels_flat": flat,

@@ -9,7 +9,8 @@ import numpy as np
 
 from dgpc_cli.io.mesh import write_mesh_obj
 from dgpc_cli.io.net import NetArtifact
-from dgpc_cli.surfaces.profiles import BUILTIN_PROFILES, profile_from_spec
+from dgpc_cli.io.units import DEFAULT_UNITS, from_mm, mm_per_unit
+from dgpc_cli.surfaces.profiles import BUILTIN_PROFILES, Profile, profile_from_spec
 from dgpc_cli.surfaces.revolution import (
     extended,
     revolution_mesh,
@@ -32,16 +33,19 @@ class InitResult:
 
 def init_revolution(profile: str, rows: int, cols: int, *, span_deg: float = 180.0,
                     twist: float = 0.0, reference_out: Path | None = None,
-                    around: int = 360) -> InitResult:
+                    around: int = 360, units: str = DEFAULT_UNITS) -> InitResult:
     """An ``rows × cols`` net on a surface of revolution, meridians as u-lines (Fig. 3, 11).
 
-    ``profile`` is a built-in name or a CSV file with header ``r,h``. With ``reference_out``
-    the triangulated surface (``around`` segments per turn, the profile resampled finely and
+    ``profile`` is a built-in name or a CSV file with header ``r,h``, its numbers in ``units``
+    (the net is computed in mm and stored in ``units``). With ``reference_out`` the
+    triangulated surface (``around`` segments per turn, the profile resampled finely and
     prolonged by ``REFERENCE_MARGIN`` at both ends) is returned too, to be written beside the
     net; the net's ``data.reference`` names it.
     """
     prof = profile_from_spec(profile)
-    f = revolution_net(prof, rows, cols, span_deg=span_deg, twist=twist)
+    k = mm_per_unit(units, "--units")
+    prof_mm = Profile(prof.name, prof.r * k, prof.h * k)
+    f = from_mm(revolution_net(prof_mm, rows, cols, span_deg=span_deg, twist=twist), units)
     parameters = {"surface": "revolution", "profile": profile, "rows": rows, "cols": cols,
                   "span_deg": span_deg, "twist": twist,
                   "reference_out": str(reference_out) if reference_out else None}
@@ -54,6 +58,6 @@ def init_revolution(profile: str, rows: int, cols: int, *, span_deg: float = 180
         vertices, faces = revolution_mesh(extended(prof, REFERENCE_MARGIN), around=around)
         reference_obj = write_mesh_obj(reference_out, vertices, faces)
         data["reference"] = {"path": str(reference_out)}
-    net = NetArtifact(f=np.asarray(f, dtype=float), parameters=parameters, inputs=inputs,
-                      data=data)
+    net = NetArtifact(f=np.asarray(f, dtype=float), units=units, parameters=parameters,
+                      inputs=inputs, data=data)
     return InitResult(net=net, reference_obj=reference_obj)

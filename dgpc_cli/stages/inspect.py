@@ -14,7 +14,8 @@ from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import resolve_input, sha256_file
 from dgpc_cli.io.net import NetArtifact
 from dgpc_cli.metrics.summary import net_metrics
-from dgpc_cli.stages.modes import GPC_ONLY
+from dgpc_cli.mold.isometry import panel_error_summary
+from dgpc_cli.stages.modes import GPC_ONLY, SOFT
 
 log = logging.getLogger(__name__)
 
@@ -54,12 +55,32 @@ def recorded_weights(net: NetArtifact) -> dict:
     return {name: parse_weight(f"{name}={value}")[1] for name, value in weights.items()}
 
 
-def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact | None = None):
+def recorded_soft(net: NetArtifact) -> tuple[str, ...]:
+    """The soft terms of the optimization that made the net (none for an initial net)."""
+    if "soft" in net.parameters:
+        return tuple(net.parameters["soft"])
+    return SOFT.get(net.parameters.get("mode"), ())
+
+
+def handle_miss(net: NetArtifact) -> dict | None:
+    """``{"max", "relative"}``: the largest distance of a handle vertex from its target, also
+    relative to the net's mean edge; None for a net without handles."""
+    handles = net.data.get("handles")
+    if not handles:
+        return None
+    ids = np.asarray(handles["ids"], dtype=np.int64)
+    miss = np.linalg.norm(net.f.reshape(-1, 3)[ids] - np.asarray(handles["targets"]), axis=1)
+    return {"max": float(miss.max()), "relative": float(miss.max() / mean_edge_length(net.f))}
+
+
+def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact | None = None,
+                         surface=None):
     """Residual norm per term and the paper's R of the net under its recorded weights.
 
     Data-bound terms count where their data is at hand: handles from ``data.handles``,
     approximation from the reference (continued as far as the net's ``init --extend``),
-    isometry from ``against``.
+    isometry from ``against``. ``surface`` is the reference's ReferenceSurface (continued as
+    far as the net's extension) when the caller has it already.
     """
     from dgpc_cli.core.reference import ReferenceSurface
     from dgpc_cli.geodesics.extension import fit_surface
@@ -74,23 +95,33 @@ def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact 
         f0=against.f if against is not None else None,
         handle_ids=np.asarray(handles["ids"], dtype=np.int64) if handles else None,
         handle_targets=np.asarray(handles["targets"], dtype=float) if handles else None,
-        reference=(ReferenceSurface.from_mesh(fit_surface(reference, net.extend))
+        reference=(surface if surface is not None
+                   else ReferenceSurface.from_mesh(fit_surface(reference, net.extend))
                    if reference is not None else None),
         boundary_ids=np.asarray(rim["ids"], dtype=np.int64) if rim else None,
     )
+    problem.soft = recorded_soft(net)
     norms = problem.residual_norms(f)
-    return norms, constraint_error(norms, {k: weights[k] for k in norms})
+    return norms, constraint_error(norms, {k: weights[k] for k in norms}, problem.soft)
 
 
 def summarize(net: NetArtifact, *, axis=None, mesh=None,
-              against: NetArtifact | None = None) -> dict:
+              against: NetArtifact | None = None, surface=None) -> dict:
     """All metrics of a net (SPEC §7) as a JSON-able dict; ``mesh`` a ReferenceMesh or None."""
     axis = axis if axis is not None else recorded_axis(net)
     metrics = net_metrics(net.f, axis=axis, against=against.f if against is not None else None,
                           reference=(mesh.vertices, mesh.faces) if mesh is not None else None)
-    norms, R = constraint_residuals(net, mesh, against)
+    norms, R = constraint_residuals(net, mesh, against, surface)
     metrics["R"] = R
     metrics["residuals"] = norms
+    # the fabrication error of a net isometric to a surface of revolution: its quads against
+    # the mold extract-mold builds from it, and against the input of an isometric deformation
+    metrics["mold_panel_error"] = panel_error_summary(net.f)
+    if against is not None:
+        metrics["panel_error_against"] = panel_error_summary(net.f, against.f)
+    miss = handle_miss(net)
+    if miss is not None:
+        metrics["handle_miss"] = miss
     return metrics
 
 

@@ -1,4 +1,24 @@
-"""Optimization modes of ``dgpc optimize`` (SPEC §4): presets of weights after paper §5.2."""
+"""Optimization modes of ``dgpc optimize`` (SPEC §4): presets of weights after paper §5.2.
+
+Guided projection minimizes Σ w_t ‖φ_t‖² (plus its damping), so the weights set priorities:
+
+* ``fit``, ``developable``: the constraints at weight 1, fairness decaying (paper §5.2).
+* ``revolution`` (a drag that stays isometric to *some* surface of revolution): (6), (7) and
+  the handles are constraints (weight 1e6, met exactly: the system is regular, see
+  ``shared notes/isometry-study``); among the many nets that meet them the drag keeps the
+  smoothest displacement (``displacement_fairness`` 1), stays put along the flexes that
+  fairness does not see (``closeness`` 1e-5) and keeps the u-edges of a row nearly equal
+  (``equal_u_edges`` 1e4: congruent strips; exactly equal would be singular again). A final
+  projection with these off meets the constraints to ``--tol``.
+* ``isometric`` (a drag that stays isometric to the *input's* surface of revolution, one mold
+  for several patches): edge lengths and (6) cannot both hold exactly under a drag (their only
+  exact deformations are Minding's bending and period-2 pleats), so the net, the handles are
+  constraints (1e6) and (6) and the input's edge lengths are weighed against each other (1
+  each) with the drag's smoothness (``displacement_fairness`` 1e-5): the smooth net of least
+  strain; its status is decided by ``--max-strain`` and ``--gpc-tol``.
+
+Weights hold as written for a net scaled to mean edge length 1 (``core.problem``).
+"""
 
 from __future__ import annotations
 
@@ -6,23 +26,31 @@ from dgpc_cli.core.constraints import TERMS
 from dgpc_cli.core.solver import Schedule, parse_weight
 
 #: Weights per mode, in the notation of ``--weight`` (a value or a schedule ``A->B``).
-#: ``net`` is always 1. Data-bound terms take part only when their data is given:
-#: approximation needs ``--reference``, handles ``--handles``, isometry the input net;
-#: boundary needs net rim vertices that start on the reference's boundary.
+#: ``net`` is 1 unless the mode says otherwise. Data-bound terms take part only when their
+#: data is given: approximation needs ``--reference``, handles ``--handles``, isometry the input
+#: net; boundary needs net rim vertices that start on the reference's boundary.
 MODES: dict[str, dict[str, str]] = {
     "fit": {"gpc": "1", "approximation": "1", "boundary": "1", "fairness": "0.01->0"},
     "developable": {"gpc": "1", "arclength": "1", "equal_strip_width": "1", "developable": "1",
                     "approximation": "1", "boundary": "1"},
-    "revolution": {"gpc": "1", "equal_strip_width": "1", "approximation": "1", "handles": "1"},
-    "isometric": {"gpc": "1", "isometry": "1", "handles": "1", "fairness": "0.01->0"},
+    "revolution": {"net": "1e6", "gpc": "1e6", "equal_strip_width": "1e6", "handles": "1e6",
+                   "approximation": "1e6", "displacement_fairness": "1", "closeness": "1e-5",
+                   "equal_u_edges": "1e4"},
+    "isometric": {"net": "1e6", "handles": "1e6", "gpc": "1", "isometry": "1",
+                  "displacement_fairness": "1e-5"},
 }
 
 #: Terms each mode treats as soft (they pull, the tolerance does not apply to them): the
 #: reference of a nearly developable fit is not exactly developable (paper Fig. 8: R = 0.29),
 #: nor need a reference be isometric to a surface of revolution. The reference's boundary
-#: only pulls: a geodesic net need not end on it everywhere.
-SOFT = {"fit": ("fairness", "boundary"), "developable": ("fairness", "approximation", "boundary"),
-        "revolution": ("fairness", "approximation"), "isometric": ("fairness",)}
+#: only pulls: a geodesic net need not end on it everywhere. In isometric mode (6) and the
+#: edge lengths are weighed against each other; ``--gpc-tol`` and ``--max-strain`` judge them.
+SOFT = {"fit": ("boundary",), "developable": ("approximation", "boundary"),
+        "revolution": ("approximation",), "isometric": ("gpc", "isometry")}
+
+#: The regularizer each mode lowers once the net has settled, while the strain against the input
+#: falls and no pleat appears (``stages.optimize._relax``).
+RELAX = {"isometric": "displacement_fairness"}
 
 #: What ``dgpc init`` nets are measured against: discrete geodesic parallel coordinates.
 GPC_ONLY = {"net": Schedule.constant(1.0), "gpc": Schedule.constant(1.0)}

@@ -1,8 +1,9 @@
 """``dgpc nest``: place the flat parts on cut sheets (SPEC §6 nest, §7 utilization, §10).
 
-Units: the flat parts are in the net's units; ``units`` names that unit (mm, cm, m, in, ft) and
-``scale`` multiplies the model first, so 1 model unit = ``scale × (mm per unit)`` mm in every
-DXF. Sheet size, margin and spacing are in mm.
+Units: the flat parts are in their artifact's unit (``data.units``, the net's), converted to mm
+once; ``scale`` multiplies the model first (a scale model: 1 for the real thing), so 1 model
+unit = ``scale × (mm per unit)`` mm in every DXF. Sheet size, margin and spacing are in mm, and
+so is everything the stage computes.
 
 Engines: ``fill`` (default) — the deterministic no-fit-polygon fill of
 :mod:`dgpc_cli.nesting.blf` with congruent parts paired (:mod:`dgpc_cli.nesting.pairs`): the
@@ -14,8 +15,6 @@ when its time budget is not what stops it. Either result is checked independentl
 
 from __future__ import annotations
 
-import csv
-import io
 import logging
 from dataclasses import dataclass
 
@@ -24,9 +23,11 @@ import shapely
 from shapely.geometry import Polygon
 
 from dgpc_cli.errors import DgpcError
-from dgpc_cli.io.dxf import UNIT_MM
+from dgpc_cli.io.dxf import previews
+from dgpc_cli.io.flat import PART_COLUMNS, csv_bytes, part_row
+from dgpc_cli.io.units import mm_per_unit
 from dgpc_cli.nesting.blf import Placement, Sheet, fill_sheets, inner_fit
-from dgpc_cli.nesting.drawing import mold_map_dxf, placed_part, previews, sheet_dxf
+from dgpc_cli.nesting.drawing import mold_map_drawing, placed_part, sheet_drawing
 from dgpc_cli.nesting.geometry import Part, bounds, group_tolerance, prepare_parts, transform
 from dgpc_cli.nesting.strip import spyrrow_sheets
 
@@ -130,7 +131,7 @@ def nest_parts(flat_parts: list[dict], sheet: Sheet, rotations: list[float], *,
         raise DgpcError(f"{sheet.margin:g}: must be >= 0 mm", source="--margin")
     if engine not in ENGINES:
         raise DgpcError(f"{engine!r}: not one of {', '.join(ENGINES)}", source="--engine")
-    k = scale * UNIT_MM[units]
+    k = scale * mm_per_unit(units)
     parts = prepare_parts(flat_parts, k, group_tolerance(sheet.spacing))
     check_fit(parts, sheet, rotations)
     if engine == "fill":
@@ -153,14 +154,16 @@ def nest_parts(flat_parts: list[dict], sheet: Sheet, rotations: list[float], *,
     return NestResult(parts, placements, sheet, list(rotations), util, overall, info)
 
 
-def sheet_drawings(result: NestResult) -> list[tuple[bytes, bytes, bytes]]:
-    """Per sheet ``(dxf, svg, png)`` bytes."""
+def sheet_drawings(result: NestResult) -> list[tuple[bytes, bytes, bytes, list]]:
+    """Per sheet ``(dxf, svg, png, labels)``: the bytes of its DXF and previews, and the labels
+    in placement order (:class:`~dgpc_cli.nesting.labels.Label`)."""
     out = []
     for s in range(result.sheet_count):
         placed = [placed_part(result.parts[p.index], p.rotation, p.translation)
                   for p in result.placements if p.sheet == s]
-        dxf = sheet_dxf(result.sheet.width, result.sheet.height, placed)
-        out.append((dxf, *previews(dxf)))
+        drawing, labels = sheet_drawing(result.sheet.width, result.sheet.height, placed)
+        dxf = drawing.to_bytes(f"sheet {sheet_id(s)}")
+        out.append((dxf, *previews(dxf), labels))
     return out
 
 
@@ -168,19 +171,22 @@ def sheet_id(s: int) -> str:
     return f"SH{s + 1:02d}"
 
 
-def parts_csv(result: NestResult) -> bytes:
-    """part id → 3-D strip (net columns v, v+1) → sheet → position (mm) and rotation."""
-    out = io.StringIO()
-    w = csv.writer(out, lineterminator="\n")
-    w.writerow(["part", "class", "strip", "net_columns", "sheet", "rotation_deg", "x_mm",
-                "y_mm", "label_x_mm", "label_y_mm"])
+#: Columns of SHEETS.parts.csv: the part, where it is (sheet, position of its origin and its
+#: rotation), then the rest of the part's columns (:data:`~dgpc_cli.io.flat.PART_COLUMNS`).
+SHEET_COLUMNS = (*PART_COLUMNS[:4], "sheet", "x_mm", "y_mm", "rotation_deg", *PART_COLUMNS[4:])
+
+
+def parts_csv(result: NestResult, flat_parts: list[dict], mm: float) -> bytes:
+    """SHEETS.parts.csv, one line per part by id: part → strip → board → sheet → position,
+    its length, widths and area in mm (``mm`` mm per flat unit, the scale included)."""
+    records = {p["id"]: p for p in flat_parts}
+    rows = []
     for p in sorted(result.placements, key=lambda q: result.parts[q.index].id):
         part = result.parts[p.index]
-        lx, ly = transform(part.label, p.rotation, p.translation)
-        w.writerow([part.id, part.cls, part.strip, f"{part.strip}-{part.strip + 1}",
-                    sheet_id(p.sheet), repr(p.rotation), repr(p.translation[0]),
-                    repr(p.translation[1]), repr(float(lx)), repr(float(ly))])
-    return out.getvalue().encode("ascii")
+        rows.append({**part_row(records[part.id], mm), "sheet": sheet_id(p.sheet),
+                     "x_mm": f"{p.translation[0]:.3f}", "y_mm": f"{p.translation[1]:.3f}",
+                     "rotation_deg": f"{p.rotation:g}"})
+    return csv_bytes(SHEET_COLUMNS, rows)
 
 
 def sheets_obj(result: NestResult) -> bytes:
@@ -211,14 +217,18 @@ def sheets_obj(result: NestResult) -> bytes:
     return ("\n".join(lines) + "\n").encode("ascii")
 
 
-def mold_map(mold, k: float) -> bytes:
-    """The panel-to-mold map DXF of a mold artifact, model units scaled by ``k`` to mm."""
-    return mold_map_dxf(k * mold.r, k * mold.h, mold.data["sector"]["angle_deg"],
-                        mold.data["pieces"], mold.data["panels"])
+def mold_map(mold, scale: float) -> tuple[bytes, bytes]:
+    """The panel-to-mold map of a mold artifact (its unit to mm, times the model ``scale``):
+    DXF and PNG preview bytes."""
+    k = scale * mm_per_unit(mold.units)
+    dxf = mold_map_drawing(k * mold.r, k * mold.h, mold.data["sector"]["angle_deg"],
+                           mold.data["pieces"], mold.data["panels"]).to_bytes("mold map")
+    (png,) = previews(dxf, ("png",))
+    return dxf, png
 
 
-def sheets_data(result: NestResult, *, units: str, scale: float, engine: str,
-                time_limit: float, seed: int) -> dict:
+def sheets_data(result: NestResult, labels: list[list], *, units: str, scale: float,
+                engine: str, time_limit: float, seed: int) -> dict:
     """``data`` of the sheets artifact (without the file records)."""
     per_sheet = []
     for s in range(result.sheet_count):
@@ -231,16 +241,24 @@ def sheets_data(result: NestResult, *, units: str, scale: float, engine: str,
             "parts_area": float(sum(result.parts[p.index].area for p in on)),
             "dxf": f"{key}_dxf", "svg": f"{key}_svg", "png": f"{key}_png"})
     sh = result.sheet
+    label_of = {}
+    for s, sheet_labels in enumerate(labels):
+        on = [p for p in result.placements if p.sheet == s]
+        for p, lb in zip(on, sheet_labels, strict=True):
+            label_of[p.index] = {"text": lb.text, "at": list(lb.at), "height": lb.height,
+                                 "rotation": lb.rotation, "leader": lb.leader is not None}
     return {
+        "units": "mm",
         "sheet": {"width": sh.width, "height": sh.height, "margin": sh.margin,
-                  "spacing": sh.spacing, "units": units, "scale": scale,
-                  "mm_per_unit": scale * UNIT_MM[units]},
+                  "spacing": sh.spacing, "part_units": units, "scale": scale,
+                  "mm_per_unit": scale * mm_per_unit(units)},
         "rotations": result.rotations, "engine": engine, "engine_info": result.engine_info,
         "seed": seed, "time_limit": time_limit, "sheet_count": result.sheet_count,
         "sheets": per_sheet,
         "placements": [{"part": result.parts[p.index].id, "class": result.parts[p.index].cls,
                         "strip": result.parts[p.index].strip, "sheet": p.sheet,
-                        "rotation": p.rotation, "translation": list(p.translation)}
+                        "rotation": p.rotation, "translation": list(p.translation),
+                        "label": label_of[p.index]}
                        for p in result.placements],
         "utilization": {"overall": result.overall, "per_sheet": result.utilization},
     }

@@ -12,6 +12,9 @@ from dgpc_cli.core.layout import NetLayout
 from dgpc_cli.core.problem import Problem, constraint_error, mean_edge_length
 from dgpc_cli.core.solver import Schedule, SolverResult, guided_projection
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.metrics.residuals import gpc_angle_defect, pleat
+from dgpc_cli.metrics.strain import strain
+from dgpc_cli.mold.isometry import panel_errors
 from dgpc_cli.tolerances import tol as TOL
 
 log = logging.getLogger(__name__)
@@ -50,6 +53,12 @@ class OptimizeOutcome:
         }
 
 
+#: A drag's intermediate handle step only has to bring the net close enough to carry on: at
+#: most STEP_MAX_ITER iterations, done at a hard residual of STEP_TOL or when the objective falls
+#: by less than 1 − STEP_RATIO over STEP_WINDOW iterations; its last step stops on that ratio
+#: over LAST_WINDOW iterations (the solver's defaults, 0.999 over 20, hold without handles).
+STEP_MAX_ITER, STEP_TOL, STEP_WINDOW, STEP_RATIO, LAST_WINDOW = 10, 1e-4, 5, 0.99, 10
+
 #: Net boundary vertices closer than this fraction of the mean edge length to the reference's
 #: boundary start on it; the ``boundary`` term keeps them there.
 BOUNDARY_SNAP = 0.05
@@ -77,13 +86,14 @@ def optimize_net(
     handle_ids: np.ndarray | None = None,
     handle_targets: np.ndarray | None = None,
     isometry_to: np.ndarray | None = None,
-    soft: tuple[str, ...] = ("fairness",),
+    soft: tuple[str, ...] = (),
     boundary_ids: np.ndarray | None = None,
     steps: int = 1,
     max_iter: int | None = None,
     tol: float = 1e-10,
     backend: str = "auto",
     progress: Callable[[int, dict], None] | None = None,
+    relax: str | None = None,
 ) -> OptimizeOutcome:
     """Optimize the net ``f (m, n, 3)`` under ``weights`` (SPEC §4).
 
@@ -93,12 +103,19 @@ def optimize_net(
     boundary angles) the isometry term keeps (default: the input). ``soft`` names the terms
     the tolerance does not apply to (see ``modes.SOFT``). ``boundary_ids`` are the vertices the
     ``boundary`` term keeps on the reference's boundary (see :func:`boundary_vertices`). The
-    returned ``R`` is the paper's constraint error at the returned vertices, net rescaled to
-    mean edge length 1 (§6.2.5).
+    drag terms (``displacement_fairness``, ``closeness``) are bound to the input ``f``. A last
+    step that soft terms or regularizers held off ``tol`` is followed by a projection onto the
+    hard terms alone (damped, so it moves the net as little as it must). ``relax`` names a
+    regularizer that is then lowered tenfold per round while the strain against the input
+    falls and no pleat appears (see :func:`_relax`). The returned ``R`` is the paper's
+    constraint error over the hard terms at the returned vertices, net rescaled to mean edge
+    length 1 (§6.2.5).
 
-    ``max_iter`` bounds the iterations of the whole run: each step, and the final projection
-    onto the hard constraints when soft terms pull, gets an equal share of what is left
-    (default: ``tol.max_iter`` for each of them).
+    ``max_iter`` bounds the iterations of the whole run: each step gets at most an equal share
+    of what is left for the steps still to come and the final projection (a drag's intermediate
+    steps stop earlier, see ``STEP_MAX_ITER``), the relaxation rounds and the projection what
+    is left. Without it every step, and the projection, may take ``tol.max_iter`` iterations
+    (the outcome's ``max_iter`` is then the sum of those limits).
     """
     f = np.asarray(f, dtype=float)
     m, n = f.shape[:2]
@@ -109,7 +126,7 @@ def optimize_net(
                       f0=(f if isometry_to is None else np.asarray(isometry_to, dtype=float))
                       if "isometry" in weights else None,
                       handle_ids=handle_ids, handle_targets=handle_targets,
-                      reference=reference, soft=soft, boundary_ids=boundary_ids)
+                      reference=reference, soft=soft, boundary_ids=boundary_ids, f_start=f)
     if not problem.active():
         raise DgpcError("no constraint term is active", source="--weight")
     x = problem.x_from_vertices(f)
@@ -117,29 +134,43 @@ def optimize_net(
     results: list[SolverResult] = []
     workspace = None
     total = 0
-    pulling = [name for name in problem.active()
-               if name in problem.soft and weights[name].end > 0]
+    pulling = [t.name for t in problem.terms()
+               if (not t.hard or t.regularizer) and t.weight.end > 0]
     phases = steps + bool(pulling)
-    max_iter = TOL.max_iter * phases if max_iter is None else max_iter
+    budget = max_iter is not None
+    if not budget:
+        max_iter = _default_budget(steps, start is not None, relax in problem.active(),
+                                   bool(pulling))
     for s in range(1, steps + 1):
-        allowance = (max_iter - total) // (phases - s + 1)
+        allowance = (max_iter - total) // (phases - s + 1) if budget else TOL.max_iter
         targets = None
         if start is not None:
             targets = start + (handle_targets - start) * (s / steps)
 
-        def step_progress(k, record, _base=total):
+        def step_progress(k, record, _base=total, _step=s):
             if progress is not None:
-                progress(_base + k, record)
+                progress(_base + k, {**record, "phase": "step", "step": _step, "steps": steps})
 
-        result = guided_projection(x, problem.terms(targets), max_iter=allowance, tol=tol,
-                                   backend=backend, workspace=workspace,
-                                   retract=layout.orient_edges, callback=step_progress)
+        result = guided_projection(x, problem.terms(targets), backend=backend,
+                                   workspace=workspace, retract=layout.orient_edges,
+                                   callback=step_progress,
+                                   **_step_limits(s, steps, start is not None, allowance, tol))
         log.info("step %d/%d: %s after %d iterations (%s)", s, steps, result.status,
                  result.iterations, result.message)
         workspace, x = result.workspace, result.x
         total += result.iterations
         results.append(result)
-    last = results[-1]
+    if relax is not None and relax in problem.active() and total < max_iter:
+        f_input = f if problem.f0 is None else problem.f0
+        for result in _relax(problem, relax, x, f_input, targets,
+                             max_iter=(max_iter - total) if budget else TOL.max_iter, tol=tol,
+                             backend=backend, workspace=workspace,
+                             callback=lambda k, r, _base=total: progress and progress(
+                                 _base + k, {**r, "phase": "relaxing"})):
+            x = result.x
+            results.append(result)
+            total += result.iterations
+    last = [r for r in results if r.status != "rejected"][-1]
     if not last.success and pulling and total < max_iter:
         # The soft terms hold the hard ones off their tolerance (a reference that is not
         # exactly developable, say): project onto the hard constraints from here, soft terms
@@ -152,16 +183,150 @@ def optimize_net(
                                       else Schedule.constant(0.0) for name in pulling}}
         hard_only = Problem(layout, problem.scale, hard_weights,
                             problem.f0, handle_ids, handle_targets, reference, problem.soft,
-                            boundary_ids)
+                            boundary_ids, f)
         log.info("projecting onto the hard constraints without %s", ", ".join(pulling))
-        result = guided_projection(x, hard_only.terms(), max_iter=max_iter - total, tol=tol,
+        result = guided_projection(x, hard_only.terms(),
+                                   max_iter=(max_iter - total) if budget else TOL.max_iter,
+                                   tol=tol,
                                    backend=backend, retract=layout.orient_edges,
-                                   callback=lambda k, r: progress and progress(total + k, r))
+                                   callback=lambda k, r: progress and progress(
+                                       total + k, {**r, "phase": "projection"}))
         x = result.x
         results.append(result)
     f_out = problem.vertices(x)
     norms = problem.residual_norms(f_out)
-    last = results[-1]
+    last = [r for r in results if r.status != "rejected"][-1]
     return OptimizeOutcome(f=f_out, status=last.status, message=last.message, steps=results,
-                           residuals=norms, R=constraint_error(norms, weights),
+                           residuals=norms, R=constraint_error(norms, weights, problem.soft),
                            max_iter=max_iter)
+
+
+
+#: Relaxation of a drag's regularizer: its weight falls to these fractions of the mode's, one
+#: round of at most RELAX_ITER iterations each, while the largest strain against the input falls
+#: by at least RELAX_GAIN per round and the pleat measure stays below half its tolerance (the
+#: last round, without it, reaches an exact isometric deformation where there is one).
+RELAX_FRACTIONS, RELAX_ITER, RELAX_GAIN = (1e-1, 1e-2, 1e-3, 0.0), 30, 0.9
+
+
+def _default_budget(steps: int, drag: bool, relax: bool, pulling: bool) -> int:
+    """The iterations a run without ``--max-iter`` may take at most: ``tol.max_iter`` for each
+    step (a drag's intermediate steps ``STEP_MAX_ITER``), the relaxation rounds, and
+    ``tol.max_iter`` for the final projection."""
+    limits = [_step_limits(s, steps, drag, TOL.max_iter, 0.0)["max_iter"]
+              for s in range(1, steps + 1)]
+    return (sum(limits) + (RELAX_ITER * len(RELAX_FRACTIONS) if relax else 0)
+            + (TOL.max_iter if pulling else 0))
+
+
+def _step_limits(s: int, steps: int, drag: bool, max_iter: int, tol: float) -> dict:
+    """Stopping rules of handle step ``s`` of ``steps`` (see ``STEP_MAX_ITER``)."""
+    if not drag:
+        return {"max_iter": max_iter, "tol": tol}
+    if s < steps:
+        return {"max_iter": min(max_iter, STEP_MAX_ITER), "tol": max(tol, STEP_TOL),
+                "stagnation_window": STEP_WINDOW, "stagnation_ratio": STEP_RATIO}
+    return {"max_iter": max_iter, "tol": tol, "stagnation_window": LAST_WINDOW,
+            "stagnation_ratio": STEP_RATIO}
+
+
+def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targets, *,
+           max_iter: int, tol: float, backend: str, workspace,
+           callback=None) -> list[SolverResult]:
+    """Lower the weight of the regularizer ``name`` (the drag's smoothness) as the net settles,
+    but never to a pleat: an isometric drag is a weighing of (6) against the edge lengths, and
+    the less the smoothness weighs, the smaller the strain — until the net starts to pleat
+    (their exact solutions). Returns the rounds' solver results; a round that did not help has
+    status ``rejected`` and the net it started from as its ``x``. The rounds take at most
+    ``max_iter`` iterations together."""
+    def measure(xv):
+        g = problem.vertices(xv)
+        corrugation = pleat(g)
+        return (float(np.nanmax(strain(g, f_input)[0])),
+                float(corrugation.max()) if corrugation.size else 0.0)
+
+    best, _ = measure(x)
+    accepted = []
+    done = 0                                        # iterations of the rounds so far
+    fractions = list(RELAX_FRACTIONS)
+    while fractions and done < max_iter:
+        fraction = fractions.pop(0)
+        weight = fraction * problem.weights[name].end
+        lowered = Problem(problem.layout, problem.scale,
+                          {**problem.weights, name: Schedule.constant(weight)}, problem.f0,
+                          problem.handle_ids, problem.handle_targets, problem.reference,
+                          problem.soft, problem.boundary_ids, problem.f_start)
+        result = guided_projection(x, lowered.terms(targets),
+                                   max_iter=min(max_iter - done, RELAX_ITER), tol=tol,
+                                   backend=backend, workspace=workspace,
+                                   retract=problem.layout.orient_edges,
+                                   callback=callback and (lambda k, r, _done=done: callback(
+                                       _done + k, r)))
+        done += result.iterations
+        worst, corrugation = measure(result.x)
+        log.info("%s weight %.0e: strain %.3g, pleat %.3g (%d iterations)", name, weight, worst,
+                 corrugation, result.iterations)
+        if not (np.isfinite(worst) and worst <= RELAX_GAIN * best
+                and corrugation <= 0.5 * TOL.pleat):
+            result.status, result.x = "rejected", x      # its work counts, its net does not
+            accepted.append(result)
+            # no gain at this weight: one last try without it (an exact isometric deformation
+            # is reached there when one exists; a pleat is refused)
+            fractions = [0.0] if fraction > 0 else []
+            continue
+        best, x = worst, result.x
+        accepted.append(result)
+    return accepted
+
+
+#: Rows named in a status message.
+WORST_ROWS = 3
+
+
+def _worst_rows(per_vertex: np.ndarray, limit: float) -> str:
+    """``"rows 3 (4.1e-4), 2 (3.9e-4)"``: the rows whose largest value exceeds ``limit``."""
+    per_row = np.nanmax(np.where(np.isfinite(per_vertex), per_vertex, -np.inf), axis=1)
+    bad = np.flatnonzero(per_row > limit)
+    worst = bad[np.argsort(-per_row[bad], kind="stable")][:WORST_ROWS]
+    return "rows " + ", ".join(f"{u} ({per_row[u]:.2e})" for u in worst)
+
+
+def judge(outcome: OptimizeOutcome, f_input: np.ndarray, *, mode: str,
+          max_strain: float = TOL.max_strain, gpc_tol: float = TOL.gpc_tol) -> tuple[str, str]:
+    """The state and message of an optimized net (SPEC §4): never ``converged`` on a pleated
+    net. In revolution mode ``converged`` only when every quad is within ``max_strain`` of the
+    surface of revolution extract-mold builds from the net (edges and diagonals); in isometric
+    mode only when the largest strain against the input (§6.1) is at most ``max_strain`` and
+    the gpc angle defect at most ``gpc_tol`` (radians).
+    """
+    f = outcome.f
+    corrugation = pleat(f)
+    if corrugation.size and float(corrugation.max()) > TOL.pleat:
+        return "pleated", (f"period-2 pleat across the geodesics of "
+                           f"{float(corrugation.max()):.3g} × the mean edge at "
+                           f"{_worst_rows(corrugation, TOL.pleat)}")
+    if not outcome.converged or mode not in ("revolution", "isometric"):
+        return outcome.status, outcome.message
+    misses = []
+    if mode == "revolution":
+        error = panel_errors(f)
+        if error is None:
+            return "missed_tolerance", "no surface of revolution fits the net's strip widths"
+        if np.nanmax(error) > max_strain:
+            misses.append(f"quads {np.nanmax(error):.3g} off the surface of revolution "
+                          f"(> --max-strain {max_strain:g}) at {_worst_rows(error, max_strain)}")
+        done = f"quads within {np.nanmax(error):.3g} of the surface of revolution"
+    else:
+        amount, _ = strain(f, f_input)
+        defect = gpc_angle_defect(f)
+        if np.nanmax(amount) > max_strain:
+            misses.append(f"strain {np.nanmax(amount):.3g} > --max-strain {max_strain:g} at "
+                          f"{_worst_rows(amount, max_strain)}")
+        if np.nanmax(defect) > gpc_tol:
+            misses.append(f"gpc angle defect {np.nanmax(defect):.3g} rad > --gpc-tol "
+                          f"{gpc_tol:g} at {_worst_rows(defect, gpc_tol)}")
+        done = (f"strain {np.nanmax(amount):.3g} ≤ {max_strain:g}, gpc angle defect "
+                f"{np.nanmax(defect):.3g} ≤ {gpc_tol:g} rad")
+    if misses:
+        return "missed_tolerance", "; ".join(misses)
+    return "converged", done

@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -10,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.strips import strip_id
 from dgpc_cli.strips.polish import polish_strip
 from dgpc_cli.strips.quality import deviation, planarity_defect, strip_width
@@ -64,6 +66,14 @@ class PlanarStrip:
     construction_planarity: float
     polish: dict
     rulings_ordered: bool
+
+    def in_units(self, units: str) -> PlanarStrip:
+        """The strip computed in mm with its geometry, width and polish residual (a length)
+        in ``units``."""
+        k = mm_per_unit(units)
+        polish = {**self.polish, **({"R": self.polish["R"] / k} if "R" in self.polish else {})}
+        return dataclasses.replace(self, A=from_mm(self.A, units), B=from_mm(self.B, units),
+                                   width=self.width / k, polish=polish)
 
     def record(self) -> dict:
         """The JSON record of the strip (its geometry goes to the OBJ)."""

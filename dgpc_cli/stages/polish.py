@@ -9,16 +9,21 @@ are there for rough starts; on such a net they only pull: second differences sho
 net while approximation lets every vertex slide along the reference (a dome's net lost a tenth
 of its coverage that way), and a rim held on a reference boundary that is not a geodesic
 parallel fights the angle condition. So for such a net, unless ``--weight`` sets them, fitting
-drops both (the artifact records the weights used).
+drops both (the artifact records the weights used). A net corrugated across its geodesics
+(``metrics.residuals.pleat`` above half the pleat tolerance: a coarse net traced over a wavy
+surface) is not polished: the fairness term is what smooths it out.
 """
 
 from __future__ import annotations
 
 import logging
 
+import numpy as np
+
 from dgpc_cli.core.solver import Schedule, parse_weight
 from dgpc_cli.metrics.degenerate import GPC_LIMIT
-from dgpc_cli.metrics.residuals import gpc_angle_defect_max
+from dgpc_cli.metrics.residuals import gpc_angle_defect_max, pleat
+from dgpc_cli.tolerances import tol as TOL
 
 log = logging.getLogger(__name__)
 
@@ -34,6 +39,11 @@ def polish_weights(f, schedules: dict, overrides=()) -> dict:
         return schedules
     defect = gpc_angle_defect_max(f)
     if defect is None or defect > GPC_LIMIT:
+        return schedules
+    corrugation = pleat(f)
+    if corrugation.size and float(np.abs(corrugation).max()) > 0.5 * TOL.pleat:
+        log.info("the net is corrugated across its geodesics (%.3g of its mean edge): fitted "
+                 "with fairness", float(np.abs(corrugation).max()))
         return schedules
     log.info("the net is nearly gpc already (angle defect %.3g rad): a polish, without %s",
              defect, " and ".join(PULLING))

@@ -49,7 +49,7 @@ def _aligned_points(part, points):
     return np.asarray(points, float) @ R.T + t
 
 
-def overlay_png(parts: list[dict], classes: list[dict]) -> bytes:
+def overlay_png(parts: list[dict], classes: list[dict], units: str) -> bytes:
     """PNG of all parts aligned on their class representatives, one panel per class."""
     by_id = {p["id"]: p for p in parts}
     k = len(classes)
@@ -64,29 +64,33 @@ def overlay_png(parts: list[dict], classes: list[dict]) -> bytes:
         ax.set_aspect("equal")
         ax.set_title(f"{cls['id']}: {cls['quantity']} × {cls['representative']}, max error "
                      f"{cls['max_relative_error']:.2e} of the length", fontsize=8)
-        ax.tick_params(labelsize=6)
+        _length_axes(ax, units)
     fig.tight_layout()
     return png_bytes(fig)
 
 
-def strips_png(parts: list[dict]) -> bytes:
-    """PNG of the parts side by side (stacked across their length), with rulings and ids."""
+def _length_axes(ax, units: str) -> None:
+    ax.set_xlabel(f"x [{units}]", fontsize=7)
+    ax.set_ylabel(f"y [{units}]", fontsize=7)
+    ax.tick_params(labelsize=6)
+
+
+def strips_png(parts: list[dict], units: str) -> bytes:
+    """PNG of the parts side by side (as in the flat artifact's 3dm), with rulings and ids."""
+    from dgpc_cli.io.flat import side_by_side
+
     fig = figure(8.0, min(2.0 + 0.35 * len(parts), 40.0))
     ax = fig.add_subplot(1, 1, 1)
-    offset = 0.0
-    for part in parts:
+    for part, shift in zip(parts, side_by_side([p["outline"] for p in parts]), strict=True):
         outline = np.asarray(part["outline"], float)
-        lo, hi = outline[:, 1].min(), outline[:, 1].max()
-        shift = np.array([0.0, offset - lo])
         ax.fill(*(outline + shift).T, facecolor="0.92", edgecolor="k", lw=0.5)
         for seg in part["score"]:
             ax.plot(*(np.asarray(seg, float) + shift).T, lw=0.3, color="tab:blue")
         lx, ly = np.asarray(part["label"], float) + shift
         ax.text(lx, ly, f"{part['id']} ({part['class']})", fontsize=5, ha="center",
                 va="center")
-        offset += (hi - lo) * 1.25
     ax.set_aspect("equal")
-    ax.tick_params(labelsize=6)
+    _length_axes(ax, units)
     fig.tight_layout()
     return png_bytes(fig)
 
@@ -95,7 +99,7 @@ def strips_png(parts: list[dict]) -> bytes:
 # every kind: (name, caption, PNG bytes) figures, then the index
 
 
-def _net_figures(json_path: Path) -> tuple[list, dict, dict]:
+def _net_figures(json_path: Path) -> tuple[list, dict, dict, str]:
     from dgpc_cli.io.net import read_net
     from dgpc_cli.metrics.clairaut import clairaut_values
     from dgpc_cli.metrics.strain import strain
@@ -109,16 +113,16 @@ def _net_figures(json_path: Path) -> tuple[list, dict, dict]:
     from dgpc_cli.stages.inspect import recorded_axis
 
     net = read_net(json_path)
-    f = net.f
+    f, u = net.f, net.units
     m, n = net.shape
     figs = [
         ("width", "Strip width per quad (mean of its two v-edges), paper §3.1.",
          grids_png([f], [width_per_quad(f)], title=f"strip width, {m}×{n} net",
-                   label="strip width")),
+                   label=f"strip width [{u}]")),
         ("curvature", "Discrete Gaussian curvature K = −∂uu w / w (Jacobi equation (1)): red "
                       "positive, blue negative, white ≈ 0 (paper Fig. 17); grey: undefined.",
          grids_png([f], [curvature_per_quad(f)], title="discrete Gaussian curvature K",
-                   label="K [1/length²]", diverging=True)),
+                   label=f"K [1/{u}²]", diverging=True)),
     ]
     against = _isometry_input(net, json_path)
     if against is not None:
@@ -132,8 +136,8 @@ def _net_figures(json_path: Path) -> tuple[list, dict, dict]:
         values = clairaut_values(f, axis)
         figs.append(("clairaut", "Clairaut's relation (9): r cos α along each geodesic, "
                                  "constant on a surface of revolution (paper Fig. 11).",
-                     clairaut_png(values, f, title="r cos α along the geodesics")))
-    return figs, net.metrics, net.status
+                     clairaut_png(values, f, title="r cos α along the geodesics", units=u)))
+    return figs, net.metrics, net.status, u
 
 
 def _isometry_input(net, json_path: Path):
@@ -159,7 +163,7 @@ def _isometry_input(net, json_path: Path):
     return other
 
 
-def _strips_figures(json_path: Path) -> tuple[list, dict, dict]:
+def _strips_figures(json_path: Path) -> tuple[list, dict, dict, str]:
     from dgpc_cli.io.strips import read_strips
     from dgpc_cli.report.net import grids_png, width_per_quad
 
@@ -168,33 +172,34 @@ def _strips_figures(json_path: Path) -> tuple[list, dict, dict]:
              for A, B in art.geometry]
     figs = [("width", "The planar-quad strips, each quad coloured by the strip width.",
              grids_png(grids, [width_per_quad(g) for g in grids],
-                       title=f"{len(grids)} planar-quad strips", label="strip width"))]
-    return figs, art.metrics, art.status
+                       title=f"{len(grids)} planar-quad strips",
+                       label=f"strip width [{art.units}]"))]
+    return figs, art.metrics, art.status, art.units
 
 
-def _flat_figures(json_path: Path) -> tuple[list, dict, dict]:
+def _flat_figures(json_path: Path) -> tuple[list, dict, dict, str]:
     from dgpc_cli.io.flat import read_flat
 
     flat = read_flat(json_path)
     figs = [("overlay", "Every part aligned on its class representative (paper Fig. 18 "
-                        "bottom-right).", overlay_png(flat.parts, flat.classes)),
+                        "bottom-right).", overlay_png(flat.parts, flat.classes, flat.units)),
             ("strips", "The developed parts side by side with their rulings (paper Fig. 18 "
-                       "bottom-left).", strips_png(flat.parts))]
-    return figs, flat.metrics, flat.status
+                       "bottom-left).", strips_png(flat.parts, flat.units))]
+    return figs, flat.metrics, flat.status, flat.units
 
 
-def _mold_figures(json_path: Path) -> tuple[list, dict, dict]:
+def _mold_figures(json_path: Path) -> tuple[list, dict, dict, str]:
     from dgpc_cli.io.mold import read_mold
     from dgpc_cli.report.net import profile_png
 
     mold = read_mold(json_path)
-    unit = str(mold.data.get("unit", ""))
-    figs = [("profile", "The mold's meridian profile (r, h) with the axis of revolution.",
-             profile_png(mold.r, mold.h, unit=unit, title="mold meridian profile"))]
-    return figs, mold.metrics, mold.status
+    figs = [("profile", f"The mold's meridian profile (r, h in {mold.units}) with the axis of "
+                        "revolution.",
+             profile_png(mold.r, mold.h, unit=mold.units, title="mold meridian profile"))]
+    return figs, mold.metrics, mold.status, mold.units
 
 
-def _sheets_links(json_path: Path, html_path: Path) -> tuple[list, dict, dict]:
+def _sheets_links(json_path: Path, html_path: Path) -> tuple[list, dict, dict, str]:
     from dgpc_cli.io.sheets import read_sheets
 
     art = read_sheets(json_path)
@@ -205,21 +210,22 @@ def _sheets_links(json_path: Path, html_path: Path) -> tuple[list, dict, dict]:
         href = Path(os.path.relpath(target.resolve(), folder)).as_posix()
         links.append((href, f"Sheet {i + 1} of {len(art.data['sheets'])} (preview written by "
                             "dgpc nest)."))
-    return links, art.metrics, art.status
+    return links, art.metrics, art.status, art.data["units"]
 
 
-def _laths_figures(json_path: Path) -> tuple[list, dict, dict]:
+def _laths_figures(json_path: Path) -> tuple[list, dict, dict, str]:
     from dgpc_cli.io.laths import read_laths
     from dgpc_cli.report.net import polylines_png
 
     art = read_laths(json_path)
     a, b = art.family("A"), art.family("B")
-    title = f"{len(a)} + {len(b)} laths, {art.data['crossings']} crossings"
+    title = (f"{len(a)} + {len(b)} laths, {art.data['crossings']} crossings (lengths in "
+             f"{art.data['units']})")
     figs = [("laths", "The two lath families (the u-line geodesics of the two nets, paper "
                       "Fig. 14); the cut list is beside the artifact.",
              polylines_png([a, b], [f"family A ({len(a)})", f"family B ({len(b)})"],
                            title=title))]
-    return figs, art.metrics, art.status
+    return figs, art.metrics, art.status, art.data["units"]
 
 
 FIGURES = {"net": _net_figures, "strips": _strips_figures, "flat": _flat_figures,
@@ -241,9 +247,9 @@ def report_files(json_path: Path, kind: str, prefix: Path) -> dict[Path, bytes]:
     html_path = Path(text + "-index.html")
     files: dict[Path, bytes] = {}
     if kind == "sheets":
-        links, metrics, status = _sheets_links(json_path, html_path)
+        links, metrics, status, units = _sheets_links(json_path, html_path)
     else:
-        figs, metrics, status = FIGURES[kind](json_path)
+        figs, metrics, status, units = FIGURES[kind](json_path)
         links = []
         for name, caption, data in figs:
             path = Path(f"{text}-{name}.png")
@@ -251,5 +257,5 @@ def report_files(json_path: Path, kind: str, prefix: Path) -> dict[Path, bytes]:
             links.append((path.name, caption))
     files[html_path] = index_html(title=f"dgpc report: {json_path.name}", kind=kind,
                                   source=json_path.name, figures=links, metrics=metrics,
-                                  status=status)
+                                  status=status, units=units)
     return files

@@ -1,77 +1,153 @@
-"""``dgpc unfold``: develop planar-quad strips into the plane and group them into congruence
-classes (paper §6.2.4, Fig. 18 bottom; SPEC §6, §7, §8)."""
+"""``dgpc unfold``: develop planar-quad strips into the plane, optionally cut them into boards of
+stock length, and group the parts into congruence classes (paper §6.2.4, Fig. 18 bottom; SPEC
+§6, §7, §8).
+
+The stage computes in millimetres (:mod:`dgpc_cli.io.units`): :func:`unfold_strips` takes the
+strips in mm and returns records in mm; :func:`records_in_units` turns them into the flat
+artifact's unit.
+"""
 
 from __future__ import annotations
 
 import logging
 
 import numpy as np
-from shapely.geometry import Polygon
+import shapely
+from shapely.geometry import LineString, Polygon
 
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.units import from_mm, mm_per_unit
+from dgpc_cli.strips.boards import Board, cumulative, split_boards
 from dgpc_cli.strips.congruence import Alignment, congruence_classes
-from dgpc_cli.strips.develop import develop_strip, signed_area
+from dgpc_cli.strips.develop import Development, develop_strip, signed_area
 from dgpc_cli.strips.trim import developed_part
 
 log = logging.getLogger(__name__)
 
 #: Default congruence tolerance: largest point distance over the strip length (SPEC §8).
 CONGRUENCE_TOL = 1e-3
+#: Default stagger of the joints of neighbouring strips, as a fraction of the stock length.
+STAGGER_FRACTION = 0.25
+
+
+def part_widths(A: np.ndarray, B: np.ndarray) -> tuple[float, float]:
+    """Least and largest width of a developed part ``A, B (m, 2)``: the distances of the
+    vertices of each boundary geodesic from the other one."""
+    a, b = LineString(A), LineString(B)
+    d = np.concatenate([shapely.distance(shapely.points(A), b),
+                        shapely.distance(shapely.points(B), a)])
+    return float(d.min()), float(d.max())
+
+
+def _boards(geometry: list, devs: list[Development], ids: list[str], columns: list[int],
+            stock_length: float | None, stagger: float | None) -> list[Board]:
+    """Every part as a board: one per strip without a stock length."""
+    if stock_length is None:
+        return [Board(i, 1, 0, d.A.shape[0] - 1) for i, d in enumerate(devs)]
+    stagger = STAGGER_FRACTION * stock_length if stagger is None else stagger
+    return [b for boards in split_boards(devs, geometry, columns, ids, stock_length, stagger)
+            for b in boards]
 
 
 def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
-                  congruence_tol: float = CONGRUENCE_TOL,
-                  mirror_ok: bool = False,
-                  source: str | None = None,
-                  trims: list | None = None) -> tuple[list[dict], list[dict], dict]:
-    """Develop every strip ``(A, B)`` of ``geometry`` and classify the developments.
+                  congruence_tol: float = CONGRUENCE_TOL, mirror_ok: bool = False,
+                  stock_length: float | None = None, stagger: float | None = None,
+                  source: str | None = None, trims: list | None = None
+                  ) -> tuple[list[dict], list[dict], list[dict]]:
+    """Develop every strip ``(A, B)`` of ``geometry`` (mm), cut it into boards no longer than
+    ``stock_length`` (mm; None: whole strips) with joints ``stagger`` apart (default a quarter
+    of the stock), and classify the parts.
 
-    Returns the part records and class records of the flat artifact (see
-    :mod:`dgpc_cli.io.flat`) and its metrics. DgpcError (naming ``source``) when a developed
-    outline crosses itself: a cutter cannot cut it. ``trims[i]`` (``planarize-strips
-    --trim``), when given, lists the parts of strip i inside the reference's outline (records
-    with ``id`` and ``outline`` in the strip's ``(t, s)``): those are developed instead of the
-    whole strip, each its own congruence class (their end cuts follow the outline).
+    Returns the part records, class records and joint records of the flat artifact (see
+    :mod:`dgpc_cli.io.flat`), in mm. DgpcError (naming ``source``) when a developed outline
+    crosses itself: a cutter cannot cut it. ``trims[i]`` (``planarize-strips --trim``), when
+    given, lists the parts of strip i inside the reference's outline (records with ``id`` and
+    ``outline`` in the strip's ``(t, s)``): those are developed instead of the whole strip,
+    each its own congruence class (their end cuts follow the outline); they are not cut into
+    boards.
     """
     devs = [develop_strip(A, B) for A, B in geometry]
     if trims is not None and any(t is not None for t in trims):
-        return _unfold_trimmed(devs, ids, columns, trims, congruence_tol, mirror_ok, source)
+        if stock_length is not None:
+            raise DgpcError("strips trimmed to the reference's outline (planarize-strips "
+                            "--trim) are not cut into boards: unfold them without "
+                            "--stock-length", source="--stock-length")
+        return _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_ok,
+                               source)
     folded = [ids[i] for i, d in enumerate(devs) if not Polygon(d.outline).is_valid]
     if folded:
         raise DgpcError(f"the developed outline of {', '.join(folded)} crosses itself (its "
                         "rulings cross; planarize-strips reports them in status.rulings_cross)",
                         source=source)
-    classes = congruence_classes([(d.A, d.B, d.length) for d in devs], congruence_tol,
+    boards = _boards(geometry, devs, ids, columns, stock_length, stagger)
+    split = stock_length is not None
+    names = [f"{ids[b.strip]}.{b.number}" if split else ids[b.strip] for b in boards]
+    pieces = [develop_strip(*(np.asarray(X, float)[b.start:b.stop + 1]
+                              for X in geometry[b.strip])) if split else devs[b.strip]
+              for b in boards]
+    classes = congruence_classes([(d.A, d.B, d.length) for d in pieces], congruence_tol,
                                  mirror_ok=mirror_ok)
-    parts: list[dict] = [{} for _ in devs]
+    along = [0.5 * (cumulative(np.asarray(A, float)) + cumulative(np.asarray(B, float)))
+             for A, B in geometry]
+    parts: list[dict] = [{} for _ in pieces]
     class_records = []
     for cls in classes:
-        rep_len = devs[cls.representative].length
+        rep_len = pieces[cls.representative].length
         for i, al in zip(cls.members, cls.alignments, strict=True):
-            d = devs[i]
+            d, b = pieces[i], boards[i]
             parts[i] = {
-                "id": ids[i], "strip": int(columns[i]), "class": cls.id,
-                "outline": d.outline, "score": d.rulings, "label": d.label_point,
-                "geodesics": [d.A, d.B], "straightness": d.straightness, "strain": d.strain,
-                "length": d.length, "area": signed_area(d.outline),
+                "id": names[i], "strip": int(columns[b.strip]), "board": b.number,
+                "rows": [b.start, b.stop],
+                "positions": [float(along[b.strip][b.start]), float(along[b.strip][b.stop])],
+                "class": cls.id, "outline": d.outline, "score": d.rulings,
+                "label": d.label_point, "geodesics": [d.A, d.B],
+                "straightness": d.straightness, "strain": d.strain, "length": d.length,
+                "width": list(part_widths(d.A, d.B)), "area": signed_area(d.outline),
                 "alignment": al.record(rep_len)}
         errors = [al.error for al in cls.alignments]
         class_records.append({
-            "id": cls.id, "representative": ids[cls.representative],
-            "quantity": len(cls.members), "members": [ids[i] for i in cls.members],
+            "id": cls.id, "representative": names[cls.representative],
+            "quantity": len(cls.members), "members": [names[i] for i in cls.members],
             "max_error": max(errors), "max_relative_error": max(errors) / rep_len})
-    metrics = flat_metrics(parts, class_records)
-    log.info("%d parts in %d congruence classes; max strain %.3g", len(parts),
-             len(class_records), metrics["max_strain"])
-    return parts, class_records, metrics
+    joints = [{"strip": ids[b.strip], "row": b.stop, "position": parts[i]["positions"][1],
+               "parts": [names[i], names[i + 1]]}
+              for i, b in enumerate(boards[:-1]) if boards[i + 1].strip == b.strip]
+    log.info("%d parts in %d congruence classes, %d joints", len(parts), len(class_records),
+             len(joints))
+    return parts, class_records, joints
 
 
-def _unfold_trimmed(devs, ids, columns, trims, congruence_tol, mirror_ok, source):
-    """:func:`unfold_strips` for strips clipped to the reference's outline."""
+def records_in_units(parts: list[dict], classes: list[dict], joints: list[dict], units: str
+                     ) -> tuple[list[dict], list[dict], list[dict]]:
+    """The records of :func:`unfold_strips` (mm) with their lengths in ``units``: geometry
+    stored exactly (:func:`~dgpc_cli.io.units.from_mm`), lengths divided, areas too."""
+    k = mm_per_unit(units)
+
+    def geometry(x):
+        return from_mm(np.asarray(x, float), units)
+
+    out = []
+    for p in parts:
+        al = p["alignment"]
+        out.append({
+            **p, "positions": [x / k for x in p["positions"]],
+            "outline": geometry(p["outline"]),
+            "score": [geometry(line) for line in p["score"]],
+            "label": geometry(p["label"]), "geodesics": [geometry(g) for g in p["geodesics"]],
+            "length": p["length"] / k, "width": [w / k for w in p["width"]],
+            "area": p["area"] / k**2,
+            "alignment": {**al, "translation": np.asarray(al["translation"]) / k,
+                          "error": al["error"] / k}})
+    return (out, [{**c, "max_error": c["max_error"] / k} for c in classes],
+            [{**j, "position": j["position"] / k} for j in joints])
+
+
+def _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_ok, source):
+    """:func:`unfold_strips` for strips clipped to the reference's outline (mm)."""
     whole = [i for i, t in enumerate(trims) if t is None]
     if whole:
         parts, classes, _ = unfold_strips(
-            [(devs[i].A, devs[i].B) for i in whole], [ids[i] for i in whole],
+            [geometry[i] for i in whole], [ids[i] for i in whole],
             [columns[i] for i in whole], congruence_tol=congruence_tol, mirror_ok=mirror_ok,
             source=source)
     else:
@@ -82,25 +158,33 @@ def _unfold_trimmed(devs, ids, columns, trims, congruence_tol, mirror_ok, source
         if trim is None:
             continue
         d = devs[i]
+        A, B = (np.asarray(X, float) for X in geometry[i])
+        along = 0.5 * (cumulative(A) + cumulative(B))
         for piece in trim["parts"]:
-            part = developed_part(d.A, d.B, np.asarray(piece["outline"], float))
+            ring = np.asarray(piece["outline"], float)
+            part = developed_part(d.A, d.B, ring)
             if not Polygon(part["outline"]).is_valid:
                 raise DgpcError(f"the developed outline of {piece['id']} crosses itself",
                                 source=source)
+            t0, t1 = float(ring[:, 0].min()), float(ring[:, 0].max())
             cls = f"C{len(classes) + 1:02d}"
-            parts.append({"id": piece["id"], "strip": int(columns[i]), "class": cls,
-                          "strain": d.strain, "alignment": identity.record(part["length"]),
-                          "trimmed": True, **part})
+            ga, gb = part["geodesics"]
+            parts.append({"id": piece["id"], "strip": int(columns[i]), "board": 1,
+                          "rows": [int(r) for r in piece["rows"]],
+                          "positions": [float(np.interp(t0, np.arange(len(along)), along)),
+                                        float(np.interp(t1, np.arange(len(along)), along))],
+                          "class": cls, "strain": d.strain,
+                          "width": list(part_widths(ga, gb)),
+                          "alignment": identity.record(part["length"]), "trimmed": True,
+                          **part})
             classes.append({"id": cls, "representative": piece["id"], "quantity": 1,
                             "members": [piece["id"]], "max_error": 0.0,
                             "max_relative_error": 0.0})
     if not parts:
         raise DgpcError("no part lies inside the reference's outline", source=source)
-    metrics = flat_metrics(parts, classes)
-    log.info("%d parts (%d trimmed to the outline) in %d congruence classes; max strain %.3g",
-             len(parts), sum(bool(p.get("trimmed")) for p in parts), len(classes),
-             metrics["max_strain"])
-    return parts, classes, metrics
+    log.info("%d parts (%d trimmed to the outline) in %d congruence classes", len(parts),
+             sum(bool(p.get("trimmed")) for p in parts), len(classes))
+    return parts, classes, []
 
 
 def flat_metrics(parts: list[dict], classes: list[dict]) -> dict:
@@ -117,4 +201,5 @@ def flat_metrics(parts: list[dict], classes: list[dict]) -> dict:
                                "relative_error": p["alignment"]["relative_error"]}
                      for p in parts},
         "total_area": float(np.sum([p["area"] for p in parts])),
+        "total_length": float(np.sum([p["length"] for p in parts])),
     }

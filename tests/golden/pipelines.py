@@ -70,13 +70,33 @@ SIZES = {
     "felt-developable": (9, 7),
     "bowling-pin-clairaut": (15, 9),
     "gridshell": (15, 11),
+    "gallery": (9, 7),
 }
+#: Make variables of the small versions: a 9×7 net is far stiffer than a 21×13 one, so the
+#: designers' drags reach strains up to 1.1e-3 and gpc defects up to 3.4e-4 rad there (at the
+#: default sizes: 2.2e-4 and 8.3e-5, within the defaults 3e-4 and 1e-4).
+SMALL_VARS = {name: {"MAX_STRAIN": "2e-3", "GPC_TOL": "5e-4"}
+              for name in ("gehry-facade", "timber-cladding", "gallery")}
+
+
+def make_args(name: str, out: Path) -> list[str]:
+    """The make variables of the small version of pipeline ``name`` writing into ``out``."""
+    rows, cols = SIZES[name]
+    extra = [f"{k}={v}" for k, v in SMALL_VARS.get(name, {}).items()]
+    return [f"OUT={out}", f"ROWS={rows}", f"COLS={cols}", f"BIN={Path(sys.executable).parent}",
+            *extra]
+
+#: The gallery's shapes (pipelines/gallery.mk).
+GALLERY = ("sphere-zone", "cylinder", "catenoid", "sphere", "bowling-pin", "wall")
 
 #: pipeline -> {metric name: (artifact stem, key path in `dgpc inspect` JSON)}
 METRICS = {
     "gehry-facade": {
         **{f"R_facade_{k}": (f"facade-{k}", "R") for k in range(1, 5)},
         **{f"max_strain_facade_{k}": (f"facade-{k}", "strain.max") for k in range(1, 5)},
+        **{f"pleat_facade_{k}": (f"facade-{k}", "pleat_max") for k in range(1, 5)},
+        **{f"departure_facade_{k}": (f"facade-{k}", "parallel_departure.relative")
+           for k in range(1, 5)},
         "mold_isometry_error_max": ("mold", "isometry_error_max"),
         "mold_radius_max": ("mold", "radius_max"),
         "mold_height": ("mold", "height"),
@@ -103,6 +123,11 @@ METRICS = {
         "clairaut_mean_abs": ("pin", "clairaut.mean_abs"),
         "hausdorff_over_diagonal": ("pin", "hausdorff.net_to_reference_max/hausdorff.diagonal"),
     },
+    "gallery": {
+        **{f"max_strain_{s}": (f"{s}-net", "strain.max") for s in GALLERY},
+        **{f"departure_{s}": (f"{s}-net", "parallel_departure.relative") for s in GALLERY},
+        **{f"mold_error_{s}": (f"{s}-mold", "isometry_error_max") for s in GALLERY},
+    },
     "gridshell": {
         "R_a": ("a", "R"),
         "R_b": ("b", "R"),
@@ -124,6 +149,7 @@ COUNTS = {
     "felt-developable": {"classes": ("flat", "n_classes"), "parts": ("flat", "n_parts")},
     "bowling-pin-clairaut": {},
     "gridshell": {},
+    "gallery": {f"classes_{s}": (f"{s}-flat", "n_classes") for s in GALLERY},
 }
 
 #: pipeline -> final nets (their coordinates are recorded)
@@ -133,16 +159,15 @@ NETS = {
     "felt-developable": ["felt"],
     "bowling-pin-clairaut": ["pin"],
     "gridshell": ["a", "b"],
+    "gallery": [f"{s}-net" for s in GALLERY],
 }
 
 
 def run(name: str, out: Path) -> Path:
     """Run the small version of pipeline ``name`` into ``out``; returns ``out/NAME``."""
-    rows, cols = SIZES[name]
     env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
     subprocess.run(["make", "-s", "-j2", "-o", ".venv/.installed", f"pipeline-{name}",
-                    f"OUT={out}", f"ROWS={rows}", f"COLS={cols}",
-                    f"BIN={Path(sys.executable).parent}"],
+                    *make_args(name, out)],
                    cwd=ROOT, check=True, env=env, stdout=subprocess.DEVNULL)
     return out / name
 
@@ -165,9 +190,12 @@ def lookup(doc: dict, path: str):
 def _inspect_stem(stem: Path) -> dict:
     """`dgpc inspect`, with --against the pipeline's initial net for the strain of a deformation."""
     base = stem.parent / "base.json"
+    if stem.name.endswith("-net"):                  # the gallery's shapes
+        base = stem.parent / f"{stem.name[:-4]}-base.json"
     args = ["inspect", str(stem)]
-    if stem.name.startswith(("facade-", "wall")) and base.exists():
-        args += ["--against", str(base.with_suffix(""))]
+    if stem.name.startswith(("facade-", "wall")) or stem.name.endswith("-net"):
+        if base.exists():
+            args += ["--against", str(base.with_suffix(""))]
     result = CliRunner().invoke(cli, args, catch_exceptions=False)
     assert result.exit_code == 0, result.stderr
     return json.loads(result.stdout)

@@ -2,7 +2,7 @@
 
 from dgpc_cli.core.constraints.approximation import approximation
 from dgpc_cli.core.constraints.boundary import boundary
-from dgpc_cli.core.constraints.fairness import fairness
+from dgpc_cli.core.constraints.fairness import closeness, displacement_fairness, fairness
 from dgpc_cli.core.constraints.gpc import gpc
 from dgpc_cli.core.constraints.handles import handles
 from dgpc_cli.core.constraints.isometry import isometry
@@ -11,6 +11,7 @@ from dgpc_cli.core.constraints.strip_widths import (
     arclength,
     developable,
     equal_strip_width,
+    equal_u_edges,
     ratio_revolution,
 )
 
@@ -19,6 +20,7 @@ TERMS = {
     "gpc": gpc,
     "arclength": arclength,
     "equal_strip_width": equal_strip_width,
+    "equal_u_edges": equal_u_edges,
     "ratio_revolution": ratio_revolution,
     "developable": developable,
     "isometry": isometry,
@@ -26,6 +28,8 @@ TERMS = {
     "boundary": boundary,
     "handles": handles,
     "fairness": fairness,
+    "displacement_fairness": displacement_fairness,
+    "closeness": closeness,
 }
 
 __all__ = ["TERMS", *TERMS]

@@ -1,4 +1,5 @@
-"""Terms on edge lengths: arc length, equal strip widths (7), ratio form (5), developable (8)."""
+"""Terms on edge lengths: arc length, equal strip widths (7), equal u-edges per row, ratio form
+(5), developable (8)."""
 
 from __future__ import annotations
 
@@ -19,6 +20,19 @@ def equal_strip_width(x, layout):
     ev = layout.ev
     return linear_difference(x, layout, layout.w_cols(ev[:, 1:].ravel()),
                              layout.w_cols(ev[:, :-1].ravel()))
+
+
+def equal_u_edges(x, layout):
+    """Equal u-edges along each row: ``w(u, v+1) − w(u, v) = 0`` for the u-edges from row u.
+
+    With (6) and (7) the strips are then congruent (§4.2.1, Lemma 4.1); added as a hard term
+    the system is singular at meridian nets (its only finite flexes besides Minding's bending
+    are period-2 pleats), so the modes use it only as a soft term that keeps the u-spread of a
+    drag small.
+    """
+    eu = layout.eu
+    return linear_difference(x, layout, layout.w_cols(eu[:, 1:].ravel()),
+                             layout.w_cols(eu[:, :-1].ravel()))
 
 
 def developable(x, layout):

@@ -47,13 +47,16 @@ class Term:
     """A constraint term bound to its data: ``func(x) -> (phi, J)`` and its weight schedule.
 
     ``hard`` terms model the geometry asked for and must reach the tolerance; soft terms
-    (closeness to a reference, fairness) pull and may keep a residual.
+    (closeness to a reference) pull and may keep a residual. A ``regularizer`` (fairness, the
+    smoothness of a drag) only shapes the path and the solution among many: its residual is
+    in no residual norm.
     """
 
     name: str
     func: Callable
     weight: Schedule
     hard: bool = True
+    regularizer: bool = False
 
 
 @dataclass
@@ -108,7 +111,7 @@ def _norms(terms, phis):
 
 def _norm(terms, phis, hard):
     sq = sum(float(p @ p) for t, p in zip(terms, phis, strict=True)
-             if t.hard == hard and t.weight.end > 0 and t.name != "fairness")
+             if t.hard == hard and t.weight.end > 0 and not t.regularizer)
     return float(np.sqrt(sq))
 
 

@@ -1,0 +1,145 @@
+"""Freeform surfaces that keep the fabrication promise (SPEC §4, §8; paper §4, §6.2.3, Fig. 13):
+handle drags of a sphere-zone meridian net in revolution and isometric mode, the pleat guard,
+and extract-mold refusing a net that no mold carries."""
+
+import json
+
+import numpy as np
+import pytest
+from cli_helpers import dgpc, metrics
+
+from dgpc_cli.core.problem import mean_edge_length
+from dgpc_cli.io.net import read_net, write_net
+from dgpc_cli.metrics.residuals import pleat
+from dgpc_cli.stages.optimize import OptimizeOutcome, judge
+from dgpc_cli.tolerances import tol as TOL
+
+M = N = 21
+
+
+@pytest.fixture(scope="module")
+def zone(tmp_path_factory):
+    """The 21×21 meridian net of a sphere zone (radius 5, ±45°), 120° wide."""
+    d = tmp_path_factory.mktemp("zone")
+    dgpc("init", "--surface", "revolution", "--profile", "sphere-zone", "--rows", M, "--cols", N,
+         "--span", 120, "-o", d / "s0")
+    return d
+
+
+def push(d, name, row, fraction):
+    """Handles: the two corners of row 0 held, the middle of ``row`` pushed towards the axis by
+    ``fraction`` of its radius. Returns the handles file and the pushed vertex's displacement."""
+    f = read_net(d / "s0").f
+    p = f[row, N // 2]
+    move = -fraction * np.array([p[0], p[1], 0.0])
+    path = d / f"{name}.json"
+    path.write_text(json.dumps({"handles": [
+        {"index": [0, 0], "offset": [0, 0, 0]}, {"index": [0, N - 1], "offset": [0, 0, 0]},
+        {"index": [row, N // 2], "offset": move.tolist()}]}))
+    return path, float(np.linalg.norm(move))
+
+
+def drag(d, name, mode, row, fraction, expect=0):
+    handles, move = push(d, f"h-{name}", row, fraction)
+    dgpc("optimize", d / "s0", "--mode", mode, "--handles", handles, "--steps", 5,
+         "-o", d / name, expect=expect)
+    m = metrics(d / name, *(["--against", d / "s0"] if mode == "isometric" else []))
+    return m, move, json.loads((d / f"{name}.json").read_text())["status"]
+
+
+@pytest.mark.parametrize("row", [0, M - 1])
+def test_revolution_drag_is_exact_smooth_and_carried_by_its_mold(zone, row):
+    """(6) and (7) hard, smoothness on the displacement: exact, no pleat, u-edges of a row
+    within 3e-4, every panel within 3e-4 of the mold extract-mold builds."""
+    name = f"rev{row}"
+    m, _, status = drag(zone, name, "revolution", row, 0.15)
+    assert status["state"] == "converged"
+    assert m["gpc_angle_defect_max"] <= 1e-9
+    assert m["strip_width_spread_max"] <= 1e-9
+    assert m["handle_miss"]["max"] <= 1e-6
+    assert m["pleat_max"] <= 0.1 * TOL.pleat
+    assert m["u_spread_max"] <= 3e-4
+    assert m["mold_panel_error"]["max"] <= 3e-4
+    # the design really moved: its parallels are no circles any more
+    assert m["parallel_departure"]["relative"] >= 4e-4
+    dgpc("extract-mold", zone / name, "-o", zone / f"mold-{name}")
+    mold = metrics(zone / f"mold-{name}")
+    assert mold["isometry_error_max"] <= 3e-4
+    assert mold["isometry_error_max"] == pytest.approx(m["mold_panel_error"]["max"], rel=1e-9)
+
+
+@pytest.mark.parametrize(("fraction", "limit"), [(0.15, 1e-4), (0.05, 4e-5)])
+def test_isometric_drag_stays_within_the_strain_of_the_paper(zone, fraction, limit):
+    """SPEC §8: max strain ≤ 1e-4 at a 15 % push, ≤ 4e-5 at 5 % (paper Fig. 13), with (6)
+    within --gpc-tol and the handle reached within 1e-3 of its displacement."""
+    name = f"iso{int(100 * fraction)}"
+    m, move, status = drag(zone, name, "isometric", M - 1, fraction)
+    assert status["state"] == "converged"
+    assert m["strain"]["max"] <= limit
+    assert m["gpc_angle_defect_max"] <= 1e-4
+    assert m["handle_miss"]["max"] <= 1e-3 * move
+    assert m["panel_error_against"]["max"] <= limit
+    assert m["pleat_max"] <= 0.1 * TOL.pleat
+    assert m["parallel_departure"]["relative"] >= 5e-4 * fraction / 0.15
+
+
+def test_a_push_no_isometric_deformation_reaches_is_not_converged(zone):
+    """The middle of row 0 pushed in between its two held corners: the row would have to
+    shorten; the weighing misses --max-strain, exits 3 and names the rows."""
+    m, _, status = drag(zone, "iso-row0", "isometric", 0, 0.15, expect=3)
+    assert status["state"] in ("missed_tolerance", "pleated")
+    assert "rows " in status["message"]
+    assert m["strain"]["max"] > TOL.max_strain
+
+
+def pleated_zone(d, amplitude):
+    """The meridian net with every odd meridian moved towards the axis by ``amplitude`` × the
+    mean edge: each meridian plane stays a mirror plane of its vertex stars, so (6) and (7)
+    hold exactly (the period-2 family of the isometry study)."""
+    net = read_net(d / "s0")
+    f = net.f.copy()
+    r = np.hypot(f[:, 1::2, 0], f[:, 1::2, 1])
+    f[:, 1::2, :2] *= (1.0 - amplitude * mean_edge_length(net.f) / r)[..., None]
+    net.f = f
+    write_net(d / "pleated", net, force=True)
+    return f
+
+
+def test_pleat_measure_reads_the_amplitude_of_the_period_2_family(zone):
+    """Odd meridians moved radially by 0.1 of the edge: ±0.05 about their mean, a pleat of
+    0.05 at the equator, where the normal is radial (cos 45° of it at the ±45° rows)."""
+    p = pleat(pleated_zone(zone, 0.1))
+    assert p.max() == pytest.approx(0.05, rel=0.02)
+    assert p.min() >= 0.05 * np.cos(np.radians(45)) * 0.98
+    assert pleat(read_net(zone / "s0").f).max() <= 1e-12
+
+
+def test_a_pleated_net_is_flagged_and_never_converged(zone):
+    """Revolution mode has nothing to do on the pleated net ((6), (7) hold), yet it is not
+    `converged`: exit 3, state `pleated`, rows named."""
+    f = pleated_zone(zone, 0.1)
+    outcome = OptimizeOutcome(f=f, status="converged", message="", steps=[], residuals={},
+                              R=0.0)
+    state, message = judge(outcome, f, mode="revolution")
+    assert state == "pleated" and "rows " in message
+    res = dgpc("-q", "optimize", zone / "pleated", "--mode", "revolution", "-o", zone / "p1",
+               expect=3)
+    assert "pleat" in res.stderr and len(res.stderr.strip().splitlines()) == 1
+    assert json.loads((zone / "p1.json").read_text())["status"]["state"] == "pleated"
+    assert metrics(zone / "p1")["pleat_max"] > TOL.pleat
+
+
+def test_extract_mold_refuses_a_drifted_revolution_net(zone):
+    """Without the drag's smoothness (all weights 1, as before), the strips drift apart: the
+    u-edges of a row differ by a fifth; extract-mold refuses it in one line."""
+    handles, _ = push(zone, "h-drift", 0, 0.15)
+    dgpc("optimize", zone / "s0", "--mode", "revolution", "--handles", handles, "--steps", 5,
+         *[a for w in ("net=1", "gpc=1", "equal_strip_width=1", "handles=1",
+                       "displacement_fairness=0", "closeness=0", "equal_u_edges=0")
+           for a in ("--weight", w)], "-o", zone / "drift", expect=None)
+    m = metrics(zone / "drift")
+    assert m["u_spread_max"] > 0.1 and m["mold_panel_error"]["max"] > 0.05
+    res = dgpc("extract-mold", zone / "drift", "-o", zone / "mold-drift", expect=1)
+    err = res.stderr.strip()
+    assert len(err.splitlines()) == 1 and "--max-strain" in err and "drift.json" in err
+    assert not list(zone.glob("mold-drift*"))
