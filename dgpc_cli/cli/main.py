@@ -72,6 +72,7 @@ def cli(ctx, verbose, quiet):
 
 
 def _register():
+    from dgpc_cli.cli.batch import batch  # imports no Dask until it runs
     from dgpc_cli.cli.extract_mold import extract_mold_cmd
     from dgpc_cli.cli.init import init
     from dgpc_cli.cli.inspect import inspect
@@ -83,7 +84,7 @@ def _register():
     from dgpc_cli.cli.unfold import unfold
 
     for command in (init, optimize, extract_mold_cmd, planarize_strips_cmd, unfold, report,
-                    inspect, laths, nest):
+                    inspect, laths, nest, batch):
         cli.add_command(command)
 
 
