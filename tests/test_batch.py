@@ -21,10 +21,13 @@ from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
+from cli_helpers import dgpc
 from click.testing import CliRunner
 
 from dgpc_cli.batch.summary import exit_code
 from dgpc_cli.cli.main import cli
+from dgpc_cli.io.flat import read_flat
+from dgpc_cli.stages.combine_flats import combine_flats, flat_tags
 
 ROOT = Path(__file__).resolve().parents[1]
 SAMPLES = ROOT / "samples"
@@ -312,3 +315,30 @@ def test_the_cli_imports_no_dask():
     out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True,
                          text=True).stdout
     assert out.strip() == "[]"
+
+
+def test_flat_tags():
+    assert flat_tags(["out/a/flat", "out/b/flat"]) == ["a", "b"]
+    assert flat_tags(["out/a-flat", "out/b-flat.json"]) == ["a-flat", "b-flat"]
+    assert flat_tags(["out/flat", "out/flat"]) == ["F1", "F2"]
+
+
+def test_congruent_parts_of_several_flats_are_one_class(tmp_path):
+    def flat(profile):
+        stem = tmp_path / profile
+        dgpc("init", "--surface", "revolution", "--profile", profile, "--rows", 7, "--cols", 5,
+             "--span", 120, "-o", stem)
+        dgpc("planarize-strips", stem, "-o", f"{stem}-strips")
+        dgpc("unfold", f"{stem}-strips", "-o", f"{stem}-flat")
+        return read_flat(f"{stem}-flat")
+
+    cat, cyl = flat("catenoid"), flat("cylinder")
+    assert [c["quantity"] for c in cat.classes] == [4]
+    both = combine_flats([("east", cat), ("west", cat), ("north", cyl)])
+    assert [p["id"] for p in both.parts][:5] == [
+        "east:S-v00", "east:S-v01", "east:S-v02", "east:S-v03", "west:S-v00"]
+    assert [(c["id"], c["quantity"], c["per_tag"]) for c in both.classes] == [
+        ("C01", 8, {"east": 4, "west": 4}), ("C02", 4, {"north": 4})]
+    assert both.classes[0]["representative"] == "east:S-v00"
+    assert all(p["alignment"]["relative_error"] <= 1e-3 for p in both.parts)
+    assert {p["class"] for p in both.parts if p["id"].startswith("north:")} == {"C02"}
