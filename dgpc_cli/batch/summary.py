@@ -168,7 +168,7 @@ def index_html(doc: dict, out: Path) -> str:
         "</style></head><body>",
         f"<h1>dgpc batch: {title}</h1>",
         f"<p>status: {doc['status']} (exit {doc['exit_code']}); {len(doc['patches'])} "
-        "patches; every figure links to its report; details in "
+        "patches (each links to its figures); details in "
         '<a href="batch.json">batch.json</a>.</p>',
         "<table><tr><th>patch</th><th>status</th><th>key metrics</th><th>message</th></tr>",
         *rows, "</table>",
