@@ -53,10 +53,11 @@ lint: setup ## Run ruff.
 demo: setup ## Run the main job (timber cladding) on the embedded sample; prints where the cut sheets are.
 	@$(MAKE) --no-print-directory pipeline-timber-cladding OUT=$(DEMO)
 
-bench: setup ## Solver speed at the paper's sizes beside a plain spsolve reference; batch scaling.
+bench: setup ## Solver speed beside plain spsolve, whole commands, iterations, start-up; batch scaling.
 	$(BIN)/python benchmarks/solver_bench.py
 	$(BIN)/python benchmarks/closest_points_bench.py
 	$(BIN)/python benchmarks/nesting_bench.py
+	$(BIN)/python benchmarks/command_bench.py
 	$(BIN)/python benchmarks/batch_bench.py
 
 # Pipelines of the paper's applications (pipelines/*.mk): make pipeline-NAME, into $(OUT)/NAME/.
