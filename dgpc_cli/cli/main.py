@@ -51,6 +51,7 @@ COMMANDS = {
     "inspect": ("inspect", "inspect", "Print an artifact's metrics as JSON."),
     "laths": ("laths", "laths", "Gridshell laths of two nets and their cut list."),
     "nest": ("nest", "nest", "Nest the flat parts on cut sheets (DXF, SVG, PNG)."),
+    "batch": ("batch", "batch", "Run a project of many patches (a facade, a sweep) on Dask."),
 }
 
 
