@@ -135,3 +135,26 @@ def test_unfold_refuses_a_degenerate_strip(tmp_path, bad):
     r = dgpc("unfold", tmp_path / "s", "-o", tmp_path / "flat", expect=1)
     one_line_error(r, "s.json", "S-v01", bad, "rows")
     assert not list(tmp_path.glob("flat*"))
+
+
+@pytest.mark.parametrize("mode", ["revolution", "isometric"])
+def test_a_collapsed_optimize_is_degenerate_not_converged(tmp_path, mode):
+    """Handles that pull row 1 of a catenoid net onto row 0: the solver meets every hard term
+    (R ~ 1e-11), and the net it writes has collapsed u-edges between rows 0 and 1 — state
+    ``degenerate``, exit 3, the rows named, never ``converged``."""
+    import json
+
+    from dgpc_cli.io.net import read_net
+
+    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 9, "--cols", 6,
+         "--span", 120, "-o", tmp_path / "c0")
+    f = read_net(tmp_path / "c0").f
+    handles = [{"index": [u, v], "target": f[0, v].tolist()} for u in (0, 1) for v in range(6)]
+    (tmp_path / "h.json").write_text(json.dumps({"handles": handles}))
+    r = dgpc("optimize", tmp_path / "c0", "--mode", mode, "--handles", tmp_path / "h.json",
+             "-o", tmp_path / "c1", expect=3)
+    one_line_error(r, "c1.json", "degenerate", "rows 0-1", "shorter than")
+    out = read_net(tmp_path / "c1")
+    assert out.status["state"] == "degenerate"
+    lu = np.linalg.norm(np.diff(out.f, axis=0), axis=-1)
+    assert lu[0].max() <= 1e-3 * lu[1:].mean()                 # the collapse it names is real

@@ -12,6 +12,7 @@ from dgpc_cli.core.layout import NetLayout
 from dgpc_cli.core.problem import Problem, constraint_error, mean_edge_length
 from dgpc_cli.core.solver import Schedule, SolverResult, guided_projection
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.metrics.degenerate import degeneracies
 from dgpc_cli.metrics.residuals import gpc_angle_defect, pleat
 from dgpc_cli.metrics.strain import strain
 from dgpc_cli.mold.isometry import panel_errors
@@ -293,13 +294,18 @@ def _worst_rows(per_vertex: np.ndarray, limit: float) -> str:
 
 def judge(outcome: OptimizeOutcome, f_input: np.ndarray, *, mode: str,
           max_strain: float = TOL.max_strain, gpc_tol: float = TOL.gpc_tol) -> tuple[str, str]:
-    """The state and message of an optimized net (SPEC §4): never ``converged`` on a pleated
-    net. In revolution mode ``converged`` only when every quad is within ``max_strain`` of the
-    surface of revolution extract-mold builds from the net (edges and diagonals); in isometric
-    mode only when the largest strain against the input (§6.1) is at most ``max_strain`` and
-    the gpc angle defect at most ``gpc_tol`` (radians).
+    """The state and message of an optimized net (SPEC §4): never ``converged`` on a folded,
+    collapsed or pleated net (state ``degenerate``, naming the rows and columns, see
+    :func:`~dgpc_cli.metrics.degenerate.degeneracies`; or ``pleated``). In revolution mode
+    ``converged`` only when every quad is within ``max_strain`` of the surface of revolution
+    extract-mold builds from the net (edges and diagonals); in isometric mode only when the
+    largest strain against the input (§6.1) is at most ``max_strain`` and the gpc angle defect
+    at most ``gpc_tol`` (radians).
     """
     f = outcome.f
+    found = degeneracies(f)
+    if found:
+        return "degenerate", f"folded or collapsed net: {found.message()}"
     corrugation = pleat(f)
     if corrugation.size and float(corrugation.max()) > TOL.pleat:
         return "pleated", (f"period-2 pleat across the geodesics of "
