@@ -106,3 +106,23 @@ def test_default_iteration_budget_is_per_step(half_sphere):
     assert net.status["iterations"] <= 540 and net.status["state"] == "converged"
     target = json.loads((d / "h.json").read_text())["handles"][0]["target"]
     assert np.linalg.norm(net.f[0, 0] - target) <= 1e-6
+
+
+def test_r_is_the_norm_of_the_hard_terms(felt):
+    """developable with --reference: the felt is not exactly developable, so approximation and
+    boundary stay off zero; R is the norm over the hard terms alone (it once mixed them in: R
+    9.12 beside a hard residual of 1.6e-3)."""
+    dgpc("optimize", felt / "fit", "--mode", "developable", "--reference", FELT, "-o",
+         felt / "devref")
+    net = read_net(felt / "devref")
+    m = metrics(felt / "devref")
+    soft = set(net.parameters["soft"])
+    assert soft == {"approximation", "boundary"}
+    hard = {k: v for k, v in m["residuals"].items()
+            if k not in soft and net.parameters["weights"].get(k, "0") != "0"}
+    assert {"gpc", "developable", "arclength", "equal_strip_width"} <= set(hard)
+    assert m["R"] == pytest.approx(float(np.sqrt(sum(v * v for v in hard.values()))),
+                                   rel=1e-9)
+    assert m["R"] <= 1e-8 <= m["residuals"]["approximation"]         # soft ones listed apart
+    assert net.status["state"] == "converged"
+    assert net.status["iterations"] <= net.parameters["max_iter"]
