@@ -39,6 +39,9 @@ MISSING = (0.85, 0.85, 0.85, 1.0)
 COVERED, UNCOVERED = (0.55, 0.55, 0.55, 0.25), (1.0, 0.5, 0.05, 0.75)
 #: Strain glyphs: stretch, compression.
 STRETCH, COMPRESSION = (0.0, 0.0, 0.0, 1.0), (0.0, 0.25, 0.95, 1.0)
+#: Smallest span of a colour bar of a one-signed field, relative to its middle value: a field
+#: constant to within it (a developable's strip width) is one colour, its ticks plain numbers.
+MIN_SPAN = 1e-3
 #: Length of the largest glyph arm, in mean edge lengths.
 GLYPH_ARM = 0.9
 
@@ -103,9 +106,10 @@ def _norm(values: np.ndarray, diverging: bool):
         return Normalize(-(a or 1.0), a or 1.0), colormaps["bwr"]
     lo = float(finite.min()) if finite.size else 0.0
     hi = float(finite.max()) if finite.size else 1.0
-    if hi <= lo:
-        pad = (abs(lo) or 1.0) * 1e-9
-        lo, hi = lo - pad, hi + pad
+    mid = 0.5 * (lo + hi)
+    if hi - lo < MIN_SPAN * (abs(mid) or 1.0):     # a constant field reads as one colour
+        pad = 0.5 * MIN_SPAN * (abs(mid) or 1.0)
+        lo, hi = mid - pad, mid + pad
     return Normalize(lo, hi), colormaps["viridis"]
 
 

@@ -123,6 +123,7 @@ def views_figure(layers: list, *, title: str, unit: str, up=(0.0, 0.0, 1.0), fro
         bar.set_label(colour_bar.label, fontsize=LABEL_PT)
         bar.ax.tick_params(labelsize=TICK_PT)
         bar.formatter.set_powerlimits((-3, 4))
+        bar.formatter.set_useOffset(False)     # ticks are values, not offsets from one
         bar.update_ticks()
     if legend:
         fig.legend(handles=legend, loc="lower left", bbox_to_anchor=(0.005, 0.005),
