@@ -53,14 +53,28 @@ lint: setup ## Run ruff.
 demo: setup ## Run the main job (timber cladding) on the embedded sample; prints where the cut sheets are.
 	@$(MAKE) --no-print-directory pipeline-timber-cladding OUT=$(DEMO)
 
-bench: setup ## Solver speed at the paper's sizes beside a plain spsolve reference.
+bench: setup ## Solver speed beside plain spsolve, whole commands, iterations, start-up; batch scaling.
 	$(BIN)/python benchmarks/solver_bench.py
 	$(BIN)/python benchmarks/closest_points_bench.py
 	$(BIN)/python benchmarks/nesting_bench.py
+	$(BIN)/python benchmarks/command_bench.py
+	$(BIN)/python benchmarks/batch_bench.py
 
 # Pipelines of the paper's applications (pipelines/*.mk): make pipeline-NAME, into $(OUT)/NAME/.
 include pipelines/_common.mk
 include $(filter-out pipelines/_common.mk,$(sort $(wildcard pipelines/*.mk)))
+
+# Projects of many patches (samples/projects/*.toml) through `dgpc batch` on a local Dask
+# cluster (WORKERS=N worker processes, default one per core), into $(OUT)/NAME/.
+BATCH_WORKERS = $(if $(WORKERS),--workers $(WORKERS))
+.PHONY: pipeline-facade-batch pipeline-sweep-batch
+pipeline-facade-batch: setup ## Gehry facade, 4 patches, 1 mold, 1 nesting: dgpc batch on Dask.
+	$(BIN)/dgpc batch samples/projects/gehry-facade.toml -o $(OUT)/facade-batch $(BATCH_WORKERS)
+	@echo "facade-batch: $(OUT)/facade-batch/index.html"
+
+pipeline-sweep-batch: setup ## Design sweep: 12 twists of the first Gehry patch (dgpc batch).
+	$(BIN)/dgpc batch samples/projects/gehry-sweep.toml -o $(OUT)/gehry-sweep $(BATCH_WORKERS)
+	@echo "gehry-sweep: $(OUT)/gehry-sweep/index.html"
 
 pipelines: $(addprefix pipeline-,$(PIPELINES)) ## Run every pipeline (out/NAME/; ROWS=, COLS= for size).
 

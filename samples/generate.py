@@ -5,7 +5,8 @@ Run from the repository root: ``.venv/bin/python samples/generate.py``. It write
 
 - ``profiles/gehry.csv``: a Gehry-type profile with a cylindrical section (paper Fig. 1, 16).
 - ``profiles/wall.csv``: the gently waving profile behind the timber wall (paper Fig. 2, 18).
-- ``handles/gehry-K-MxN.json`` (K = 1..4), ``handles/wall-MxN.json`` and
+- ``handles/gehry-K-MxN.json`` (K = 1..4), ``handles/gehry-sweep-KK-MxN.json`` (a design
+  sweep of the first patch, KK = 01..12), ``handles/wall-MxN.json`` and
   ``handles/gallery-NAME-MxN.json`` (six surfaces of revolution, paper Fig. 19): handles of
   ``dgpc optimize --mode isometric`` as a designer drags them on the meridian net that
   ``dgpc init --surface revolution --profile PROFILE --rows M --cols N --span SPAN`` makes:
@@ -64,6 +65,8 @@ def twist(end: str, fraction: float) -> dict:
             f"{end}-right": -fraction}
 
 
+#: The twists of the design sweep of the first Gehry-type patch (fractions of the radius).
+SWEEP = [round(0.02 + 0.005 * k, 3) for k in range(12)]
 #: Handle sets: name -> (profile: a CSV of samples/profiles or a built-in name, ``--span`` of
 #: the pipeline's `dgpc init` in degrees (the .mk files use the same values), drag: corner ->
 #: radial move as a fraction of its radius, 0 = held). The four Gehry-type patches twist their
@@ -81,6 +84,10 @@ HANDLE_SETS = {
     "gallery-sphere": ("sphere", 90.0, twist("top", 0.04)),
     "gallery-bowling-pin": ("bowling-pin", 90.0, twist("top", 0.3)),
     "gallery-wall": ("wall.csv", 60.0, twist("top", 0.08)),
+    # a design study of the first Gehry-type patch (samples/projects/gehry-sweep.toml): its
+    # top row twisted by 2 % to 7.5 % of the radius, in 12 steps of 0.5 %
+    **{f"gehry-sweep-{k:02d}": ("gehry.csv", 90.0, twist("top", SWEEP[k - 1]))
+       for k in range(1, len(SWEEP) + 1)},
 }
 
 

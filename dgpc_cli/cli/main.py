@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import importlib
 import logging
 import sys
 
@@ -32,8 +33,54 @@ def configure_logging(verbosity: int) -> None:
     root.propagate = False
 
 
+#: The subcommands: name -> (module under dgpc_cli.cli, attribute, short help). A command's
+#: module (and the numerical libraries it needs) is imported only when the command runs or its
+#: own help is asked for, so `dgpc --help`, `--version` and shell completion stay instant.
+#: The short help repeats the command's own (a test keeps them equal).
+COMMANDS = {
+    "init": ("init", "init", "Make an initial net."),
+    "optimize": ("optimize", "optimize",
+                 "Optimize a net (fit, developable, revolution, isometric)."),
+    "extract-mold": ("extract_mold", "extract_mold_cmd",
+                     "Extract the mold (surface of revolution) of nets."),
+    "planarize-strips": ("planarize_strips", "planarize_strips_cmd",
+                         "Make every geodesic strip a strip of planar quads."),
+    "unfold": ("unfold", "unfold",
+               "Develop strips into the plane; group them into congruence classes."),
+    "report": ("report", "report", "Write figures of an artifact (PNG) and an index.html."),
+    "inspect": ("inspect", "inspect", "Print an artifact's metrics as JSON."),
+    "laths": ("laths", "laths", "Gridshell laths of two nets and their cut list."),
+    "nest": ("nest", "nest", "Nest the flat parts on cut sheets (DXF, SVG, PNG)."),
+    "batch": ("batch", "batch", "Run a project of many patches (a facade, a sweep) on Dask."),
+}
+
+
 class DgpcGroup(click.Group):
-    """Turns domain errors into one line on stderr and the exit code of SPEC §2."""
+    """Turns domain errors into one line on stderr and the exit code of SPEC §2; loads its
+    subcommands lazily (``COMMANDS``)."""
+
+    def list_commands(self, ctx):
+        return list(COMMANDS)
+
+    def get_command(self, ctx, name):
+        if name not in COMMANDS:
+            return None
+        module, attribute, _ = COMMANDS[name]
+        return getattr(importlib.import_module(f"dgpc_cli.cli.{module}"), attribute)
+
+    def format_commands(self, ctx, formatter):
+        """The command list of ``--help`` from ``COMMANDS`` (nothing imported)."""
+        rows = [(name, help_) for name, (_, _, help_) in COMMANDS.items()]
+        with formatter.section("Commands"):
+            formatter.write_dl(rows)
+
+    def shell_complete(self, ctx, incomplete):
+        """Complete subcommand names from ``COMMANDS`` (nothing imported)."""
+        from click.shell_completion import CompletionItem
+
+        items = [CompletionItem(name, help=help_) for name, (_, _, help_) in COMMANDS.items()
+                 if name.startswith(incomplete)]
+        return items + [item for item in click.Command.shell_complete(self, ctx, incomplete)]
 
     def invoke(self, ctx):
         try:
@@ -69,25 +116,6 @@ def cli(ctx, verbose, quiet):
     ctx.ensure_object(dict)
     ctx.obj["verbosity"] = verbose - quiet
     configure_logging(verbose - quiet)
-
-
-def _register():
-    from dgpc_cli.cli.extract_mold import extract_mold_cmd
-    from dgpc_cli.cli.init import init
-    from dgpc_cli.cli.inspect import inspect
-    from dgpc_cli.cli.laths import laths
-    from dgpc_cli.cli.nest import nest
-    from dgpc_cli.cli.optimize import optimize
-    from dgpc_cli.cli.planarize_strips import planarize_strips_cmd
-    from dgpc_cli.cli.report import report
-    from dgpc_cli.cli.unfold import unfold
-
-    for command in (init, optimize, extract_mold_cmd, planarize_strips_cmd, unfold, report,
-                    inspect, laths, nest):
-        cli.add_command(command)
-
-
-_register()
 
 
 def main():  # pragma: no cover - console entry point

@@ -49,7 +49,8 @@ def _parsed(parser):
 
 
 @click.command(short_help="Nest the flat parts on cut sheets (DXF, SVG, PNG).")
-@click.argument("stem", type=click.Path(path_type=Path))
+@click.argument("stems", metavar="FLAT [FLAT ...]", nargs=-1, required=True,
+                type=click.Path(path_type=Path))
 @click.option("--mold", "mold_stem", type=click.Path(path_type=Path), metavar="MOLD",
               help="A mold artifact: also write the panel-to-mold map DXF.")
 @click.option("--sheet", "sheet_size", required=True, callback=_parsed(parse_sheet),
@@ -78,34 +79,48 @@ def _parsed(parser):
 @force_opt
 @format_opt
 @click.pass_context
-def nest(ctx, stem, mold_stem, sheet_size, margin, spacing, rotations, units_check, scale,
+def nest(ctx, stems, mold_stem, sheet_size, margin, spacing, rotations, units_check, scale,
          engine, time_limit, seed, output, force, fmt):
-    """Place every part of the flat artifact STEM (each congruence class in its quantity) on
+    """Place every part of the flat artifact FLAT (each congruence class in its quantity) on
     as few sheets as it can, and write the sheets artifact -o SHEETS: SHEETS.json, .obj,
     .parts.csv and per sheet SHEETS.sheetNN.dxf/.svg/.png (with --mold, .moldmap.dxf).
+
+    Several FLATs (the patches of one facade) are nested together: part ids become TAG:ID,
+    TAG the flat's name, or its folder's name when the names repeat (facade-2/flat →
+    facade-2:S-v03), and congruent parts of different flats are one class, its quantity
+    summed over them (recorded in the JSON's data.combined).
 
     The parts' unit is the flat artifact's (from `init --units`); every DXF is in mm (times
     SCALE); sheet, margin and spacing are in mm. Prints the written JSON path.
     """
-    json_path, _ = artifact_paths(stem)
+    json_paths = [artifact_paths(stem)[0] for stem in stems]
     check_writable(output, force, extra_path(output, "parts_csv"))
-    flat = read_flat(stem)
-    check_units(units_check, flat.units, json_path)
-    units = flat.units
+    flats = [read_flat(stem) for stem in stems]
+    units = same_units([(str(p), f.units) for p, f in zip(json_paths, flats, strict=True)])
+    check_units(units_check, units, json_paths[0])
+    combined = None
+    if len(flats) == 1:
+        flat_parts = flats[0].parts
+    else:
+        from dgpc_cli.stages.combine_flats import combine_flats, flat_tags
+
+        combined = combine_flats(list(zip(flat_tags(stems), flats, strict=True)))
+        flat_parts = combined.parts
     mold = None
     if mold_stem is not None:
         from dgpc_cli.io.mold import read_mold
 
         mold = read_mold(mold_stem)
-        same_units([(str(json_path), units), (str(artifact_paths(mold_stem)[0]), mold.units)])
+        same_units([(str(json_paths[0]), units),
+                    (str(artifact_paths(mold_stem)[0]), mold.units)])
     sheet = Sheet(sheet_size[0], sheet_size[1], margin, spacing)
-    n = len(flat.parts)
+    n = len(flat_parts)
     with progressbar(ctx, length=(2 * n if engine == "fill" else n),
                      label="nesting") as bar:
-        result = nest_parts(flat.parts, sheet, rotations, units=units, scale=scale,
+        result = nest_parts(flat_parts, sheet, rotations, units=units, scale=scale,
                             engine=engine, time_limit=time_limit, seed=seed,
                             progress=bar.update)
-    extra: dict[str, bytes] = {"parts_csv": parts_csv(result, flat.parts,
+    extra: dict[str, bytes] = {"parts_csv": parts_csv(result, flat_parts,
                                                       scale * mm_per_unit(units))}
     drawings = sheet_drawings(result)
     for s, (dxf, svg, png, _) in enumerate(drawings):
@@ -113,19 +128,24 @@ def nest(ctx, stem, mold_stem, sheet_size, margin, spacing, rotations, units_che
                       f"sheet{s + 1:02d}_png": png})
     out_json, _ = artifact_paths(output)
     folder = out_json.resolve().parent
-    inputs = {"flat": file_input(json_path, folder)}
+    inputs = ({"flat": file_input(json_paths[0], folder)} if combined is None else
+              {f"flat{k + 1}": file_input(p, folder) for k, p in enumerate(json_paths)})
     if mold is not None:
         extra["moldmap_dxf"], extra["moldmap_png"] = mold_map(mold, scale)
         inputs["mold"] = file_input(artifact_paths(mold_stem)[0], folder)
     data = sheets_data(result, [d[3] for d in drawings], units=units, scale=scale,
                        engine=engine, time_limit=time_limit, seed=seed)
+    metrics = sheets_metrics(data)
+    if combined is not None:
+        data["combined"] = combined.record()
+        metrics["classes"] = {c["id"]: c["quantity"] for c in combined.classes}
     parameters = {"sheet": f"{sheet.width:g}x{sheet.height:g}", "margin": margin,
                   "spacing": spacing, "rotations": rotations, "units": units, "scale": scale,
                   "engine": engine, "time_limit": time_limit, "seed": seed,
                   "mold": mold_stem is not None}
     files = sheets_files(output, data=data, extra=extra, obj=sheets_obj(result),
-                         inputs=inputs, parameters=parameters, metrics=sheets_metrics(data),
+                         inputs=inputs, parameters=parameters, metrics=metrics,
                          status={"sheet_count": result.sheet_count,
                                  "deterministic": engine == "fill"})
-    write_files(with_3dm(files, output, fmt, parts=flat.parts), force=force)
+    write_files(with_3dm(files, output, fmt, parts=flat_parts), force=force)
     click.echo(str(out_json))

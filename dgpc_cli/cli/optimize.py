@@ -7,7 +7,8 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt, progressbar
+from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
+from dgpc_cli.cli.progress import SolverProgress
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.core.solver import Schedule
 from dgpc_cli.core.solver.linear import BACKENDS
@@ -101,13 +102,7 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
     if mode == "isometric" and handle_ids is None:
         raise DgpcError("--mode isometric needs --handles", source="--handles")
 
-    with progressbar(ctx, steps * max_iter, f"optimize ({mode})") as bar:
-        last = [0]
-
-        def progress(k, record):
-            bar.update(k + 1 - last[0])
-            last[0] = k + 1
-
+    with SolverProgress(ctx, f"optimize ({mode})", tol) as progress:
         fit = fit_surface(mesh, net.extend) if mesh is not None else None
         surface = ReferenceSurface(fit.vertices * mm, fit.faces) if fit is not None else None
         # a net that runs past its reference (init --extend) has no rim on its boundary
@@ -119,7 +114,6 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
             handle_ids=handle_ids, handle_targets=handle_targets, soft=SOFT[mode], steps=steps,
             max_iter=max_iter, tol=tol, backend=backend, progress=progress,
             relax=RELAX.get(mode))
-        bar.update(steps * max_iter - last[0])
 
     out_json, _ = artifact_paths(output)
     folder = out_json.resolve().parent
@@ -145,7 +139,8 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
                                             max_strain=max_strain, gpc_tol=gpc_tol)
     result.status = outcome.record()
     result.metrics = summarize(result, mesh=mesh,
-                               against=net if mode == "isometric" else None)
+                               against=net if mode == "isometric" else None,
+                               surface=surface.scaled(1.0 / mm) if surface is not None else None)
     write_files(with_3dm(net_files(output, result), output, fmt), force=force)
     click.echo(str(out_json))
     log.info("%s: %s, %d iterations, R = %.3g", out_json, outcome.status, outcome.iterations,

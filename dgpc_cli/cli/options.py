@@ -49,7 +49,8 @@ def show_progress(ctx) -> bool:
 
 
 def progressbar(ctx, length: int, label: str):
-    """A click progress bar on stderr (silent with -q)."""
+    """A click progress bar on stderr, on an interactive terminal only (silent with -q, and in
+    pipes and logs, where an error must be the only line)."""
     return click.progressbar(length=length, label=label, file=sys.stderr,
-                             show_eta=False, show_pos=True,
-                             hidden=not show_progress(ctx))
+                             show_eta=True, show_pos=True,
+                             hidden=not (show_progress(ctx) and sys.stderr.isatty()))

@@ -1,10 +1,13 @@
 """The reference surface: closest points and normals on a triangle mesh (paper §5.1).
 
 Backed by libigl's AABB tree, built once per surface (SPEC §10: much faster than
-trimesh.proximity on 100k-triangle references).
+trimesh.proximity on 100k-triangle references); a scaled copy shares the tree and scales the
+queries instead (building the tree of a 300k-triangle reference takes about a second).
 """
 
 from __future__ import annotations
+
+import copy
 
 import igl
 import numpy as np
@@ -18,6 +21,9 @@ class ReferenceSurface:
 
     Face normals follow the winding (right-hand rule); degenerate faces are dropped.
     """
+
+    #: Factor of this view's coordinates over the tree's (see :meth:`scaled`).
+    _scale = 1.0
 
     def __init__(self, vertices: np.ndarray, faces: np.ndarray):
         V = np.ascontiguousarray(vertices, dtype=np.float64)
@@ -35,13 +41,13 @@ class ReferenceSurface:
         if not keep.any():
             raise ValueError("all faces are degenerate")
         F = np.ascontiguousarray(F[keep])
-        self.vertices, self.faces = V, F
+        self._V, self.faces = V, F
         self.face_normals = np.ascontiguousarray(cross[keep] / norm[keep, None])
-        for a in (self.vertices, self.faces, self.face_normals):
+        for a in (self._V, self.faces, self.face_normals):
             a.setflags(write=False)
         self._tree = igl.AABB()
         self._tree.init(V, F)
-        self._boundary: tuple[np.ndarray, np.ndarray] | None = None
+        self._cache: dict = {}                # shared with the scaled views
 
     @classmethod
     def from_mesh(cls, mesh) -> ReferenceSurface:
@@ -49,15 +55,23 @@ class ReferenceSurface:
         return cls(mesh.vertices, mesh.faces)
 
     @property
+    def vertices(self) -> np.ndarray:
+        """Vertex coordinates ``(k, 3)`` of this (possibly scaled) surface."""
+        return self._V if self._scale == 1.0 else self._V * self._scale
+
+    @property
     def bbox_diagonal(self) -> float:
         """Length of the axis-aligned bounding-box diagonal."""
-        return float(np.linalg.norm(np.ptp(self.vertices, axis=0)))
+        return float(np.linalg.norm(np.ptp(self._V, axis=0))) * self._scale
 
     def scaled(self, s: float) -> ReferenceSurface:
-        """The surface with every coordinate multiplied by ``s > 0`` (normals unchanged)."""
+        """The surface with every coordinate multiplied by ``s > 0`` (normals unchanged): a
+        view that shares this one's tree and boundary and scales the queries."""
         if not (np.isfinite(s) and s > 0):
             raise ValueError(f"scale must be positive and finite, got {s}")
-        return ReferenceSurface(self.vertices * s, self.faces)
+        view = copy.copy(self)
+        view._scale = self._scale * s
+        return view
 
     def closest(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Closest points ``p (k, 3)`` on the mesh to ``points (k, 3)`` and the unit normals
@@ -67,20 +81,26 @@ class ReferenceSurface:
             raise ValueError(f"expected points (k, 3), got shape {P.shape}")
         if len(P) == 0:
             return np.zeros((0, 3)), np.zeros((0, 3))
-        _, face_ids, p = self._tree.squared_distance(self.vertices, self.faces, P)
-        return np.asarray(p, dtype=np.float64).reshape(-1, 3), self.face_normals[face_ids]
+        if self._scale != 1.0:
+            P = P / self._scale
+        _, face_ids, p = self._tree.squared_distance(self._V, self.faces, P)
+        p = np.asarray(p, dtype=np.float64).reshape(-1, 3)
+        return (p if self._scale == 1.0 else p * self._scale), self.face_normals[face_ids]
 
     @property
     def boundary_segments(self) -> tuple[np.ndarray, np.ndarray]:
         """End points ``a, b (s, 3)`` of the boundary edges (edges of one face only); empty for a
         closed mesh."""
-        if self._boundary is None:
+        if "boundary" not in self._cache:
             F = self.faces
             edges = np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1)
-            unique, counts = np.unique(edges, axis=0, return_counts=True)
+            keys = edges[:, 0] * np.int64(len(self._V)) + edges[:, 1]   # one int per edge
+            unique, counts = np.unique(keys, return_counts=True)
             once = unique[counts == 1]
-            self._boundary = (self.vertices[once[:, 0]], self.vertices[once[:, 1]])
-        return self._boundary
+            a, b = once // len(self._V), once % len(self._V)
+            self._cache["boundary"] = (self._V[a], self._V[b])
+        a, b = self._cache["boundary"]
+        return (a, b) if self._scale == 1.0 else (a * self._scale, b * self._scale)
 
     def closest_on_boundary(self, points: np.ndarray, chunk: int = 256):
         """Closest points ``b (k, 3)`` on the mesh boundary to ``points (k, 3)`` and the unit

@@ -73,12 +73,14 @@ def handle_miss(net: NetArtifact) -> dict | None:
     return {"max": float(miss.max()), "relative": float(miss.max() / mean_edge_length(net.f))}
 
 
-def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact | None = None):
+def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact | None = None,
+                         surface=None):
     """Residual norm per term and the paper's R of the net under its recorded weights.
 
     Data-bound terms count where their data is at hand: handles from ``data.handles``,
     approximation from the reference (continued as far as the net's ``init --extend``),
-    isometry from ``against``.
+    isometry from ``against``. ``surface`` is the reference's ReferenceSurface (continued as
+    far as the net's extension) when the caller has it already.
     """
     from dgpc_cli.core.reference import ReferenceSurface
     from dgpc_cli.geodesics.extension import fit_surface
@@ -93,7 +95,8 @@ def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact 
         f0=against.f if against is not None else None,
         handle_ids=np.asarray(handles["ids"], dtype=np.int64) if handles else None,
         handle_targets=np.asarray(handles["targets"], dtype=float) if handles else None,
-        reference=(ReferenceSurface.from_mesh(fit_surface(reference, net.extend))
+        reference=(surface if surface is not None
+                   else ReferenceSurface.from_mesh(fit_surface(reference, net.extend))
                    if reference is not None else None),
         boundary_ids=np.asarray(rim["ids"], dtype=np.int64) if rim else None,
     )
@@ -103,12 +106,12 @@ def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact 
 
 
 def summarize(net: NetArtifact, *, axis=None, mesh=None,
-              against: NetArtifact | None = None) -> dict:
+              against: NetArtifact | None = None, surface=None) -> dict:
     """All metrics of a net (SPEC §7) as a JSON-able dict; ``mesh`` a ReferenceMesh or None."""
     axis = axis if axis is not None else recorded_axis(net)
     metrics = net_metrics(net.f, axis=axis, against=against.f if against is not None else None,
                           reference=(mesh.vertices, mesh.faces) if mesh is not None else None)
-    norms, R = constraint_residuals(net, mesh, against)
+    norms, R = constraint_residuals(net, mesh, against, surface)
     metrics["R"] = R
     metrics["residuals"] = norms
     # the fabrication error of a net isometric to a surface of revolution: its quads against

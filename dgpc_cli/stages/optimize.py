@@ -132,9 +132,9 @@ def optimize_net(
         if start is not None:
             targets = start + (handle_targets - start) * (s / steps)
 
-        def step_progress(k, record, _base=total):
+        def step_progress(k, record, _base=total, _step=s):
             if progress is not None:
-                progress(_base + k, record)
+                progress(_base + k, {**record, "phase": "step", "step": _step, "steps": steps})
 
         result = guided_projection(x, problem.terms(targets), backend=backend,
                                    workspace=workspace, retract=layout.orient_edges,
@@ -148,7 +148,9 @@ def optimize_net(
     if relax is not None and relax in problem.active():
         f_input = f if problem.f0 is None else problem.f0
         for result in _relax(problem, relax, x, f_input, targets, max_iter=max_iter, tol=tol,
-                             backend=backend, workspace=workspace):
+                             backend=backend, workspace=workspace,
+                             callback=lambda k, r, _base=total: progress and progress(
+                                 _base + k, {**r, "phase": "relaxing"})):
             x = result.x
             results.append(result)
             total += result.iterations
@@ -167,7 +169,8 @@ def optimize_net(
         log.info("projecting onto the hard constraints without %s", ", ".join(pulling))
         result = guided_projection(x, hard_only.terms(), max_iter=max_iter, tol=tol,
                                    backend=backend, retract=layout.orient_edges,
-                                   callback=lambda k, r: progress and progress(total + k, r))
+                                   callback=lambda k, r: progress and progress(
+                                       total + k, {**r, "phase": "projection"}))
         x = result.x
         results.append(result)
     f_out = problem.vertices(x)
@@ -196,7 +199,8 @@ def _step_limits(s: int, steps: int, drag: bool, max_iter: int, tol: float) -> d
 
 
 def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targets, *,
-           max_iter: int, tol: float, backend: str, workspace) -> list[SolverResult]:
+           max_iter: int, tol: float, backend: str, workspace,
+           callback=None) -> list[SolverResult]:
     """Lower the weight of the regularizer ``name`` (the drag's smoothness) as the net settles,
     but never to a pleat: an isometric drag is a weighing of (6) against the edge lengths, and
     the less the smoothness weighs, the smaller the strain — until the net starts to pleat
@@ -210,6 +214,7 @@ def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targ
 
     best, _ = measure(x)
     accepted = []
+    done = 0                                        # iterations of the rounds so far
     fractions = list(RELAX_FRACTIONS)
     while fractions:
         fraction = fractions.pop(0)
@@ -220,7 +225,10 @@ def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targ
                           problem.soft, problem.boundary_ids, problem.f_start)
         result = guided_projection(x, lowered.terms(targets), max_iter=min(max_iter, RELAX_ITER),
                                    tol=tol, backend=backend, workspace=workspace,
-                                   retract=problem.layout.orient_edges)
+                                   retract=problem.layout.orient_edges,
+                                   callback=callback and (lambda k, r, _done=done: callback(
+                                       _done + k, r)))
+        done += result.iterations
         worst, corrugation = measure(result.x)
         log.info("%s weight %.0e: strain %.3g, pleat %.3g (%d iterations)", name, weight, worst,
                  corrugation, result.iterations)

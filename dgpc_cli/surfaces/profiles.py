@@ -20,7 +20,6 @@ from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
-from scipy.interpolate import PchipInterpolator
 
 from dgpc_cli.errors import DgpcError
 
@@ -112,6 +111,8 @@ _PIN_R = np.array([2.6, 3.45, 4.65, 5.65, 6.05, 5.65, 4.6, 3.3, 2.5, 2.3, 2.42, 
 def _bowling_pin() -> Profile:
     # Dense samples plus the control points themselves, so belly, neck and head are exact.
     h = np.union1d(np.linspace(_PIN_H[0], _PIN_H[-1], BUILTIN_SAMPLES), _PIN_H)
+    from scipy.interpolate import PchipInterpolator  # only here: a slow import
+
     return Profile("bowling-pin", PchipInterpolator(_PIN_H, _PIN_R)(h), h)
 
 

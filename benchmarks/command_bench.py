@@ -1,0 +1,111 @@
+"""``make bench``: what a user waits for — whole commands, iterations to tolerance, start-up.
+
+Runs, in one process tree and one run (so the noisy machine cancels out of the ratios):
+
+* ``dgpc --version`` beside ``python -c "import click"`` (median of 5; ratio);
+* the commands of the pipelines' stages, each timed as a whole and with its iterations (a
+  deterministic count) beside the figure before the drag and stopping-rule changes:
+  a 21×21 fit to a bowling pin, the demo's isometric optimize (the timber wall, 21×13, its
+  samples handles), the felt's developable fit (41×25), a 4,797-vertex (123×39) fit;
+* for each optimize, the share of its time spent in the solver loop (``guided_projection``,
+  from a profile of the command; the rest is reading, the reference, metrics, writing).
+"""
+
+from __future__ import annotations
+
+import json
+import pstats
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+DGPC = str(Path(sys.executable).parent / "dgpc")
+
+#: Iterations before this change (issue figures), for the comparison column.
+BEFORE = {"demo isometric (wall 21×13)": 829, "felt developable (41×25)": 205,
+          "bowling-pin fit (21×21)": 23, "bowling-pin fit (123×39, 4,797 vertices)": 94}
+
+
+def _median_seconds(argv: list[str], runs: int = 5) -> float:
+    times = []
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        subprocess.run(argv, check=True, capture_output=True)
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+def _run(argv: list[str], profile: Path) -> tuple[float, int]:
+    """Wall time and exit code of ``dgpc ARGS`` run under cProfile (writing ``profile``)."""
+    t0 = time.perf_counter()
+    code = subprocess.run([sys.executable, "-m", "cProfile", "-o", str(profile), "-m",
+                           "dgpc_cli.cli.main", *argv], capture_output=True).returncode
+    return time.perf_counter() - t0, code
+
+
+def _solver_share(stem: Path, profile: Path) -> tuple[int, float]:
+    """Iterations of the optimize that wrote ``stem`` and the share of the process's time
+    spent in the solver loop (``guided_projection``), from its profile."""
+    status = json.loads(stem.with_suffix(".json").read_text())["status"]
+    stats = pstats.Stats(str(profile))
+    total = stats.total_tt
+    loop = sum(cumulative for (path, _, name), (_, _, _, cumulative, callers)
+               in stats.stats.items()
+               if name == "guided_projection" and path.endswith("guided_projection.py")
+               and not any(c[2] == "guided_projection" for c in callers))
+    return status["iterations"], loop / total if total > 0 else float("nan")
+
+
+def main() -> int:
+    click_s = _median_seconds([sys.executable, "-c", "import click"])
+    version_s = _median_seconds([DGPC, "--version"])
+    print(f"start-up: dgpc --version {version_s:.3f} s, python -c 'import click' "
+          f"{click_s:.3f} s, ratio {version_s / click_s:.2f} (target ≤ 3)")
+    with tempfile.TemporaryDirectory() as tmp:
+        d = Path(tmp)
+        ref = d / "pin-ref.obj"
+        prep = [
+            [DGPC, "-q", "init", "--surface", "revolution", "--profile", "bowling-pin",
+             "--rows", "21", "--cols", "21", "--twist", "3", "--reference-out", str(ref),
+             "-o", str(d / "pin0")],
+            [DGPC, "-q", "init", "--surface", "revolution", "--profile", "bowling-pin",
+             "--rows", "123", "--cols", "39", "--span", "180", "--twist", "0.5",
+             "--reference-out", str(d / "pin-big.obj"), "-o", str(d / "big0")],
+            [DGPC, "-q", "init", "--surface", "revolution", "--profile",
+             str(ROOT / "samples/profiles/wall.csv"), "--rows", "21", "--cols", "13",
+             "--span", "60", "--units", "m", "-o", str(d / "wall0")],
+            [DGPC, "-q", "init", str(ROOT / "samples/meshes/felt.obj"), "--method", "geodesic",
+             "--rows", "41", "--cols", "25", "-o", str(d / "felt0")],
+        ]
+        for argv in prep:
+            subprocess.run(argv, check=True, capture_output=True)
+        cases = {
+            "bowling-pin fit (21×21)": ([DGPC, "-q", "optimize", str(d / "pin0"), "--mode",
+                                         "fit", "--reference", str(ref)], "pin"),
+            "demo isometric (wall 21×13)": (
+                [DGPC, "-q", "optimize", str(d / "wall0"), "--mode", "isometric", "--handles",
+                 str(ROOT / "samples/handles/wall-21x13.json"), "--steps", "5"], "wall"),
+            "felt developable (41×25)": (
+                [DGPC, "-q", "optimize", str(d / "felt0"), "--mode", "developable",
+                 "--reference", str(ROOT / "samples/meshes/felt.obj")], "felt"),
+            "bowling-pin fit (123×39, 4,797 vertices)": (
+                [DGPC, "-q", "optimize", str(d / "big0"), "--mode", "fit", "--reference",
+                 str(d / "pin-big.obj")], "big"),
+        }
+        print(f"{'command':44s} {'wall s':>8s} {'exit':>4s} {'iterations':>10s} "
+              f"{'before':>6s} {'solver loop':>11s}")
+        for name, (argv, stem) in cases.items():
+            profile = d / f"{stem}.prof"
+            wall, code = _run([*argv[1:], "-o", str(d / stem)], profile)
+            iterations, share = _solver_share(d / stem, profile)
+            print(f"{name:44s} {wall:8.1f} {code:4d} {iterations:10d} {BEFORE[name]:6d} "
+                  f"{100 * share:10.0f} %")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

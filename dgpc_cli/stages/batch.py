@@ -1,0 +1,154 @@
+"""``dgpc batch``: run a project's tasks on a Dask cluster (``dask.distributed`` futures).
+
+The client walks the task graph (:mod:`dgpc_cli.batch.graph`): a task whose dependencies
+have finished with their artifacts written is either reused (:mod:`dgpc_cli.batch.cache`)
+or submitted to the cluster, one Dask future per dgpc command, and results are taken as they
+complete (``distributed.as_completed``), so independent patches run side by side and the
+shared stages start as soon as their patches are done. A task whose dependency failed is not
+run (``blocked``); the other patches go on.
+
+The function that runs a task on a worker is passed in (``runner``): the command line's
+:func:`dgpc_cli.cli.batch_tasks.run_task`, which invokes the dgpc command itself.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+import uuid
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from dgpc_cli.batch.cache import fingerprint, load_previous, reusable
+from dgpc_cli.batch.graph import Task
+
+log = logging.getLogger(__name__)
+
+#: Exit codes after which the next stages run (the artifact was written).
+WRITTEN = (0, 3)
+
+
+@dataclass
+class Progress:
+    """Where a batch stands: groups (patches, then ``shared``) and tasks finished."""
+
+    groups_done: int
+    groups_total: int
+    tasks_done: int
+    tasks_total: int
+    elapsed_s: float
+    eta_s: float | None
+    group: str
+
+
+@dataclass
+class BatchRun:
+    """Per task its record (``batch.json``'s ``tasks``) and whether it ran in this batch."""
+
+    records: dict[str, dict] = field(default_factory=dict)
+    executed: dict[str, bool] = field(default_factory=dict)
+    wall_time_s: float = 0.0
+
+
+def task_spec(task: Task, out: Path, base: Path) -> dict:
+    """What the worker needs to run ``task``: the command, its arguments and the folders."""
+    return {"id": task.id, "command": task.command, "args": task.args, "cwd": str(base),
+            "out": str(out), "outputs": task.outputs}
+
+
+def run_batch(tasks: dict[str, Task], out: Path, base: Path, client, runner: Callable,
+              *, progress: Callable[[Progress], None] | None = None) -> BatchRun:
+    """Run ``tasks`` (writing into ``out``, their paths relative to ``base``) on the Dask
+    ``client`` with ``runner`` on the workers; see the module."""
+    from distributed import as_completed
+
+    out, base = Path(out).resolve(), Path(base).resolve()
+    previous = load_previous(out / "batch.json")
+    run = BatchRun()
+    start = time.perf_counter()
+    groups = list(dict.fromkeys(t.group for t in tasks.values()))
+    left = {g: sum(1 for t in tasks.values() if t.group == g) for g in groups}
+    pending = dict(tasks)
+    futures = {}
+    executed_time = [0.0, 0]            # wall time of the tasks run here, and their count
+    workers = max(1, len(client.scheduler_info().get("workers", {})))
+
+    def finish(task: Task, record: dict, executed: bool) -> None:
+        run.records[task.id] = record
+        run.executed[task.id] = executed
+        if executed:
+            executed_time[0] += record["wall_time_s"]
+            executed_time[1] += 1
+        left[task.group] -= 1
+        if left[task.group] == 0 and progress is not None:
+            progress(_progress(task.group))
+
+    def _progress(group: str) -> Progress:
+        done = len(run.records)
+        elapsed = time.perf_counter() - start
+        remaining = len(tasks) - done
+        eta = None
+        if executed_time[1]:
+            eta = remaining * executed_time[0] / executed_time[1] / workers
+        return Progress(sum(1 for g in groups if left[g] == 0), len(groups), done,
+                        len(tasks), elapsed, 0.0 if remaining == 0 else eta, group)
+
+    def schedule() -> list:
+        """Settle every task whose dependencies are settled; return the new futures."""
+        new = []
+        changed = True
+        while changed:
+            changed = False
+            for tid, task in list(pending.items()):
+                deps = [run.records.get(d) for d in task.deps]
+                if any(d is None for d in deps):
+                    continue
+                del pending[tid]
+                changed = True
+                failed = [dep for dep, rec in zip(task.deps, deps, strict=True)
+                          if rec["exit_code"] not in WRITTEN]
+                if failed:
+                    finish(task, {"command": task.argv, "exit_code": None, "status": "blocked",
+                                  "message": f"not run: {failed[0]} did not write its "
+                                             "artifact", "warnings": [], "outputs": {},
+                                  "wall_time_s": 0.0}, False)
+                    continue
+                fp = fingerprint(task, base)
+                old = previous.get(tid)
+                if reusable(old, fp, task, out):
+                    finish(task, {**old, "command": task.argv}, False)
+                    continue
+                key = f"dgpc-{tid.replace('/', '-')}-{uuid.uuid4().hex[:12]}"
+                future = client.submit(runner, task_spec(task, out, base), key=key)
+                futures[future] = (task, fp)
+                new.append(future)
+        return new
+
+    completed = as_completed(schedule())
+    for future in completed:
+        task, fp = futures.pop(future)
+        try:
+            result = future.result()
+        except Exception as err:  # noqa: BLE001 - a worker lost or a task that could not run
+            reason = " ".join(str(err).split()) or type(err).__name__
+            result = {"exit_code": 1, "message": f"the task could not run on the cluster "
+                                                 f"({type(err).__name__}): {reason}",
+                      "warnings": [], "outputs": {}, "wall_time_s": 0.0}
+        record = {"command": task.argv, "fingerprint": fp, "exit_code": result["exit_code"],
+                  "status": status_of(result["exit_code"]), "message": result["message"],
+                  "warnings": result["warnings"], "outputs": result["outputs"],
+                  "wall_time_s": result["wall_time_s"]}
+        finish(task, record, True)
+        completed.update(schedule())
+    for task in pending.values():     # unreachable with a well-formed graph
+        finish(task, {"command": task.argv, "exit_code": None, "status": "blocked",
+                      "message": "not run: its dependencies never finished", "warnings": [],
+                      "outputs": {}, "wall_time_s": 0.0}, False)
+    run.wall_time_s = time.perf_counter() - start
+    return run
+
+
+def status_of(exit_code: int | None) -> str:
+    """``ok`` (0), ``not_converged`` (3: artifact written), ``failed`` (1, 2), ``blocked``."""
+    return {0: "ok", 3: "not_converged", None: "blocked"}.get(exit_code, "failed")
