@@ -256,3 +256,36 @@ def test_sheet_previews_show_cut_and_score_colours(arts, tmp_path):
     assert names == list(SHEET_LEGEND)
     for line, name in zip(leg.get_lines(), names, strict=True):
         np.testing.assert_allclose(np.asarray(line.get_color())[:3], legend[name])
+
+
+# --------------------------------------------------------------------------------------------
+# the reference under a net
+
+
+def test_uncovered_reference_shows_orange_with_the_metrics_share():
+    """A net over the left half of a plane: the reference faces it does not cover are drawn
+    orange, and the covered share the figure states is the coverage metric's."""
+    from dgpc_cli.metrics.coverage import coverage, covered_faces
+    from dgpc_cli.report.net import UNCOVERED, Reference, field_figure, width_per_quad
+
+    x, y = np.meshgrid(np.linspace(0, 4, 17), np.linspace(0, 2, 9), indexing="ij")
+    rv = np.stack([x, y, np.zeros_like(x)], axis=-1).reshape(-1, 3)
+    idx = np.arange(17 * 9).reshape(17, 9)
+    a, b, c, d = idx[:-1, :-1], idx[1:, :-1], idx[1:, 1:], idx[:-1, 1:]
+    rf = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3),
+                         np.stack([a, c, d], -1).reshape(-1, 3)])
+    u, v = np.meshgrid(np.linspace(0, 2, 9), np.linspace(0, 2, 9), indexing="ij")
+    f = np.stack([u, v, np.zeros_like(u)], axis=-1)
+    metric = coverage(f, rv, rf)
+    ref = Reference(rv, rf, covered_faces(f, rv, rf), metric["area_fraction"])
+    assert ref.area_fraction == pytest.approx(metric["area_fraction"], abs=1e-12)
+    assert 0.4 < metric["area_fraction"] < 0.6
+    with style():
+        fig = field_figure([f], [width_per_quad(f)], title="t", label="strip width [m]",
+                           unit="m", reference=ref)
+    (layer,) = _collections(_axes(fig, "view-plan"), "reference")
+    orange = np.all(np.isclose(layer.get_facecolors(), UNCOVERED), axis=1)
+    assert orange.sum() == (ref.covered < 0.5).sum() > 0
+    (legend,) = fig.legends
+    labels = [t.get_text() for t in legend.get_texts()]
+    assert f"reference, covered ({100 * metric['area_fraction']:.1f} %)" in labels
