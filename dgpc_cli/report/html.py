@@ -69,7 +69,7 @@ def _head(kind: str, source: str, header: Header, status: dict, units: str) -> l
     else:
         lines.append("<tr><td>inputs</td><td>none (made from scratch)</td></tr>")
     if state or message:
-        text = escape(state) + (f": {escape(message)}" if message else "")
+        text = escape(state) + (f": {escape(message)}" if message and message != state else "")
         lines.append(f'<tr><td>status</td><td class="{cls}">{text}</td></tr>')
     lines.append("</table>")
     return lines
