@@ -57,8 +57,9 @@ def convergence_figure(status: dict, *, title: str):
     for start in starts[1:]:
         ax.axvline(start - 0.5, color="0.6", lw=0.6, ls=":")
     ax.set_yscale("log")
-    ax.set_xlabel(f"iteration (all {len(steps)} steps in a row; dotted: a step begins)",
-                  fontsize=LABEL_PT)
+    what = ("one handle step" if len(steps) == 1 else
+            f"all {len(steps)} handle steps in a row; dotted: a step begins")
+    ax.set_xlabel(f"iteration ({what})", fontsize=LABEL_PT)
     ax.set_ylabel("residual norm (mean edge 1)", fontsize=LABEL_PT)
     ax.grid(True, which="major", lw=0.3)
     ax.tick_params(labelsize=TICK_PT)
