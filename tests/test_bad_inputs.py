@@ -1,0 +1,145 @@
+"""Bad inputs of every kind (issue 16): each gives exactly one line on stderr naming the option
+or the file and field, the exit code of SPEC §2, and leaves every folder as it was."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import shutil
+
+import click
+import pytest
+from cli_helpers import dgpc
+
+from dgpc_cli.cli.finite_float import FiniteFloat
+from dgpc_cli.cli.main import COMMANDS, cli
+
+
+@pytest.fixture(scope="module")
+def sample(tmp_path_factory):
+    """A small full-ring catenoid net through the stages: net, strips, flat, mold."""
+    d = tmp_path_factory.mktemp("bad-inputs")
+    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 9, "--cols", 7,
+         "--span", 360, "-o", d / "cat")
+    dgpc("planarize-strips", d / "cat", "-o", d / "strips")
+    dgpc("unfold", d / "strips", "-o", d / "flat")
+    dgpc("extract-mold", d / "cat", "-o", d / "mold")
+    return d
+
+
+def snapshot(*folders) -> dict:
+    """sha256 of every file under ``folders``, by path."""
+    return {p: hashlib.sha256(p.read_bytes()).hexdigest()
+            for folder in folders for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def assert_one_line(result, code, *words):
+    """Exit ``code``, stderr one line starting with ``Error:`` and naming ``words``."""
+    assert result.exit_code == code, (result.exit_code, result.stderr)
+    lines = result.stderr.splitlines()
+    assert len(lines) == 1, result.stderr
+    assert lines[0].startswith("Error: ") and "internal error" not in lines[0], lines[0]
+    for w in words:
+        assert w in lines[0], (w, lines[0])
+
+
+def run_bad(folders, args, code, *words):
+    """Run ``dgpc ARGS`` expecting a one-line error; no file under ``folders`` changes."""
+    before = snapshot(*folders)
+    result = dgpc(*args, expect=None)
+    assert_one_line(result, code, *words)
+    assert snapshot(*folders) == before
+    return result
+
+
+def copy_artifact(src_json, dst_folder, name, edit=None):
+    """Copy the artifact of ``src_json`` (its JSON and every file beside it of the same stem)
+    to ``dst_folder/name``; ``edit(doc)`` changes the JSON (written back with Python's json,
+    which writes NaN and Infinity)."""
+    stem = src_json.name[: -len(".json")]
+    for p in src_json.parent.glob(f"{stem}.*"):
+        shutil.copy(p, dst_folder / (name + p.name[len(stem):]))
+    doc = json.loads(src_json.read_text())
+    doc["data"]["obj"] = f"{name}.obj"
+    for record in doc["data"].get("files", {}).values():
+        record["path"] = name + record["path"][len(stem):]
+    if edit is not None:
+        edit(doc)
+    (dst_folder / f"{name}.json").write_text(json.dumps(doc))
+    return dst_folder / name
+
+
+# -- items 1 and 2: no NaN or inf reaches a check or a cut file ---------------------------------
+
+def test_every_float_option_is_a_finite_float():
+    """Every float option of every command has the type that refuses NaN and inf."""
+    ctx = click.Context(cli)
+    for name in COMMANDS:
+        for param in cli.get_command(ctx, name).params:
+            if isinstance(param.type, click.types.FloatParamType):
+                assert isinstance(param.type, FiniteFloat), (name, param.name)
+
+
+FLOAT_OPTIONS = [
+    (["init", "--surface", "revolution", "--profile", "catenoid"], "--twist"),
+    (["init", "--surface", "revolution", "--profile", "catenoid"], "--span"),
+    (["init", "--surface", "revolution", "--profile", "catenoid"], "--spacing"),
+    (["init", "--surface", "revolution", "--profile", "catenoid"], "--extend"),
+    (["optimize", "{d}/cat", "--mode", "revolution"], "--tol"),
+    (["optimize", "{d}/cat", "--mode", "isometric"], "--max-strain"),
+    (["optimize", "{d}/cat", "--mode", "isometric"], "--gpc-tol"),
+    (["extract-mold", "{d}/cat"], "--tol"),
+    (["extract-mold", "{d}/cat"], "--flat-tol"),
+    (["extract-mold", "{d}/cat"], "--mold-max-length"),
+    (["extract-mold", "{d}/cat"], "--lambda"),
+    (["planarize-strips", "{d}/cat"], "--flat-angle"),
+    (["unfold", "{d}/strips"], "--congruence-tol"),
+    (["unfold", "{d}/strips"], "--stock-length"),
+    (["unfold", "{d}/strips"], "--stagger"),
+    (["nest", "{d}/flat", "--sheet", "700x500"], "--margin"),
+    (["nest", "{d}/flat", "--sheet", "700x500"], "--spacing"),
+    (["nest", "{d}/flat", "--sheet", "700x500"], "--scale"),
+    (["nest", "{d}/flat", "--sheet", "700x500"], "--time-limit"),
+    (["laths", "{d}/cat", "{d}/cat"], "--gap"),
+]
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "-inf", "NaN", "1e999"])
+@pytest.mark.parametrize("args, option", FLOAT_OPTIONS,
+                         ids=[f"{a[0]}{o}" for a, o in FLOAT_OPTIONS])
+def test_non_finite_option_is_a_usage_error(sample, tmp_path, args, option, value):
+    args = [a.format(d=sample) for a in args]
+    run_bad([sample, tmp_path], [*args, option, value, "-o", tmp_path / "out"], 2,
+            f"'{option}'", "not a finite number")
+
+
+@pytest.mark.parametrize("value, what", [(float("nan"), "NaN"), (1e999, "inf"),
+                                         (-1e999, "-inf")])
+def test_non_finite_mold_profile_reaches_no_cut_file(sample, tmp_path, value, what):
+    """data.profile.r[1] = NaN (or 1e999, which Python's json reads as inf) in a mold: nest
+    --mold refuses it before nesting, naming the file and the field."""
+    mold = copy_artifact(sample / "mold.json", tmp_path, "bad",
+                         lambda d: d["data"]["profile"]["r"].__setitem__(1, value))
+    text = (tmp_path / "bad.json").read_text()
+    if what != "NaN":  # json.dumps writes Infinity; write the number as a mold shop might
+        (tmp_path / "bad.json").write_text(text.replace("Infinity", "1e999"))
+    run_bad([sample, tmp_path], ["nest", sample / "flat", "--mold", mold, "--sheet", "700x500",
+                                 "--scale", 100, "-o", tmp_path / "sheets"], 1,
+            "bad.json", "data.profile.r[1]", what)
+
+
+@pytest.mark.parametrize("command, kind, edit, field", [
+    (["nest", "{a}", "--sheet", "700x500", "--scale", 100], "flat",
+     lambda d: d["data"]["parts"][0]["geodesics"][0][1].__setitem__(0, float("nan")),
+     "data.parts[0].geodesics[0][1][0]"),
+    (["planarize-strips", "{a}"], "cat",
+     lambda d: d["data"].__setitem__("extra", [1, 2, float("-inf")]), "data.extra[2]"),
+    (["inspect", "{a}"], "strips",
+     lambda d: d["metrics"].__setitem__("huge", 10 ** 400), "metrics.huge"),
+])
+def test_non_finite_number_in_any_artifact(sample, tmp_path, command, kind, edit, field):
+    bad = copy_artifact(sample / f"{kind}.json", tmp_path, "bad", edit)
+    args = [str(a).format(a=bad) for a in command]
+    out = [] if command[0] == "inspect" else ["-o", tmp_path / "out"]
+    result = run_bad([sample, tmp_path], [*args, *out], 1, "bad.json", field)
+    assert result.stdout == ""
