@@ -143,3 +143,42 @@ def test_non_finite_number_in_any_artifact(sample, tmp_path, command, kind, edit
     out = [] if command[0] == "inspect" else ["-o", tmp_path / "out"]
     result = run_bad([sample, tmp_path], [*args, *out], 1, "bad.json", field)
     assert result.stdout == ""
+
+
+# -- item 3: --force leaves no file of the previous output behind ------------------------------
+
+def test_force_removes_the_sheets_of_a_previous_longer_layout(sample, tmp_path):
+    out = tmp_path / "sh"
+    dgpc("nest", sample / "flat", "--sheet", "700x500", "--scale", 100, "-o", out)
+    many = sorted(p.name for p in tmp_path.glob("sh.sheet*"))
+    dgpc("nest", sample / "flat", "--sheet", "2500x1250", "--scale", 100, "-o", out, "--force")
+    doc = json.loads((tmp_path / "sh.json").read_text())
+    listed = {r["path"] for r in doc["data"]["files"].values()} | {doc["data"]["obj"]}
+    assert len(many) > 3 * doc["data"]["sheet_count"] > 0
+    assert {p.name for p in tmp_path.iterdir()} == listed | {"sh.json"}
+    assert not list(tmp_path.glob(".*"))
+
+
+def test_force_removes_the_figures_of_a_previous_report(sample, tmp_path):
+    user_file = tmp_path / "r-notes.png"            # not the report's: never removed
+    user_file.write_bytes(b"mine")
+    first = dgpc("report", sample / "cat", "-o", tmp_path / "r").stdout.split()
+    second = dgpc("report", sample / "mold", "-o", tmp_path / "r", "--force").stdout.split()
+    assert set(first) - set(second)
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        [user_file.name] + [p.rsplit("/", 1)[-1] for p in second])
+
+
+def test_force_keeps_files_an_artifact_does_not_own(sample, tmp_path):
+    """Paths in the previous JSON that lead out of its folder or to another stem are never
+    removed."""
+    dgpc("unfold", sample / "strips", "-o", tmp_path / "f")
+    other = tmp_path / "other.txt"
+    other.write_text("keep")
+    doc = json.loads((tmp_path / "f.json").read_text())
+    doc["data"]["files"]["parts_csv"]["path"] = "other.txt"
+    doc["data"]["files"]["evil"] = {"path": f"../{tmp_path.name}/f.keep", "sha256": "0" * 64}
+    (tmp_path / "f.keep").write_text("keep")
+    (tmp_path / "f.json").write_text(json.dumps(doc))
+    dgpc("unfold", sample / "strips", "-o", tmp_path / "f", "--force")
+    assert other.read_text() == "keep" and (tmp_path / "f.keep").read_text() == "keep"

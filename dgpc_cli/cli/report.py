@@ -9,7 +9,7 @@ import click
 from dgpc_cli.cli.inspect import artifact_kind
 from dgpc_cli.io.artifact import artifact_paths
 from dgpc_cli.io.atomic import write_files
-from dgpc_cli.stages.report import report_files
+from dgpc_cli.stages.report import previous_report_files, report_files
 
 
 @click.command(short_help="Write figures of an artifact (PNG) and an index.html.")
@@ -38,6 +38,6 @@ def report(stem, output, force):
     json_path, _ = artifact_paths(stem)
     kind = artifact_kind(json_path)
     files = report_files(json_path, kind, output)
-    write_files(files, force=force)
+    write_files(files, force=force, replaces=previous_report_files(output))
     for p in files:
         click.echo(str(p))
