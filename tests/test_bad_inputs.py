@@ -182,3 +182,67 @@ def test_force_keeps_files_an_artifact_does_not_own(sample, tmp_path):
     (tmp_path / "f.json").write_text(json.dumps(doc))
     dgpc("unfold", sample / "strips", "-o", tmp_path / "f", "--force")
     assert other.read_text() == "keep" and (tmp_path / "f.keep").read_text() == "keep"
+
+
+# -- item 10: paths -----------------------------------------------------------------------------
+
+COMMAND_LINES = {
+    "init": ["init", "--surface", "revolution", "--profile", "catenoid", "--rows", 5,
+             "--cols", 5],
+    "optimize": ["optimize", "{d}/cat", "--mode", "revolution"],
+    "extract-mold": ["extract-mold", "{d}/cat"],
+    "planarize-strips": ["planarize-strips", "{d}/cat"],
+    "unfold": ["unfold", "{d}/strips"],
+    "nest": ["nest", "{d}/flat", "--sheet", "700x500"],
+    "report": ["report", "{d}/cat"],
+    "laths": ["laths", "{d}/cat", "{d}/cat"],
+    "batch": ["batch", "{d}/project.toml"],
+}
+
+
+def test_every_command_with_an_output_is_listed():
+    ctx = click.Context(cli)
+    with_output = {name for name in COMMANDS
+                   if any("-o" in p.opts for p in cli.get_command(ctx, name).params)}
+    assert with_output == set(COMMAND_LINES)
+
+
+@pytest.mark.parametrize("output", ["", " ", ".", "..", "sub/", "{t}/"])
+@pytest.mark.parametrize("command", sorted(COMMAND_LINES))
+def test_output_without_a_file_name_is_a_usage_error(sample, tmp_path, monkeypatch, command,
+                                                     output):
+    if command == "batch" and output not in ("", " "):
+        return  # batch writes into a folder: only the empty path is no folder
+    (sample / "project.toml").touch()
+    monkeypatch.chdir(tmp_path)
+    args = [str(a).format(d=sample) for a in COMMAND_LINES[command]]
+    run_bad([sample, tmp_path], [*args, "-o", output.format(t=tmp_path)], 2, "'--output'")
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("args", [
+    ["init", "{x}.obj", "--method", "project", "--direction", "0,0,1"],
+    ["init", "{x}.stl", "--method", "geodesic"],
+    ["init", "--from-quads", "{x}.obj"],
+    ["init", "--surface", "revolution", "--profile", "{x}.csv", "--rows", 5, "--cols", 5],
+    ["optimize", "{d}/cat", "--mode", "fit", "--reference", "{x}.obj"],
+    ["optimize", "{d}/cat", "--mode", "isometric", "--handles", "{x}.json"],
+    ["optimize", "{x}", "--mode", "revolution"],
+    ["extract-mold", "{x}"],
+    ["planarize-strips", "{x}"],
+    ["unfold", "{x}"],
+    ["nest", "{x}", "--sheet", "700x500"],
+    ["nest", "{d}/flat", "--mold", "{x}", "--sheet", "700x500"],
+    ["laths", "{d}/cat", "{x}"],
+    ["report", "{x}"],
+    ["inspect", "{x}"],
+])
+def test_a_folder_as_an_input_file_is_bad_data(sample, tmp_path, args):
+    """A folder where a mesh, profile, handles file or artifact is expected: exit 1 (an
+    unreadable input, SPEC §2) everywhere, naming it."""
+    x = tmp_path / "in"
+    for suffix in (".obj", ".stl", ".csv", ".json"):
+        (tmp_path / f"in{suffix}").mkdir()
+    args = [str(a).format(d=sample, x=x) for a in args]
+    out = [] if args[0] == "inspect" else ["-o", tmp_path / "out"]
+    run_bad([sample, tmp_path], [*args, *out], 1, "in", "directory")

@@ -53,7 +53,7 @@ def _mesh_net(reference, method, direction, rows, cols, spacing, largest_compone
 
 @click.command(short_help="Make an initial net.",
                epilog="Built-in profiles:\n\n\b\n" + describe_builtins())
-@click.argument("reference", required=False, type=click.Path(dir_okay=False, path_type=Path))
+@click.argument("reference", required=False, type=click.Path(path_type=Path))
 @click.option("--surface", type=click.Choice(["revolution"]),
               help="Analytic surface: 'revolution' (profile revolved about the z axis).")
 @click.option("--profile", metavar="NAME|FILE",
@@ -69,7 +69,7 @@ def _mesh_net(reference, method, direction, rows, cols, spacing, largest_compone
 @click.option("--direction", metavar="x,y,z",
               help="Direction for --method: normal of the base plane (geodesic) or of the "
                    "projection (project).")
-@click.option("--from-quads", "from_quads", type=click.Path(dir_okay=False, path_type=Path),
+@click.option("--from-quads", "from_quads", type=click.Path(path_type=Path),
               metavar="FILE.obj",
               help="Import a regular quad net from an OBJ file: the m×n grid is detected, the "
                    "family with the smaller gpc angle defect becomes the geodesics (u-lines). "

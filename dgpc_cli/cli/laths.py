@@ -10,6 +10,7 @@ import numpy as np
 
 from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.options import force_opt, format_opt
+from dgpc_cli.cli.output_path import OutputPath
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
@@ -29,7 +30,7 @@ log = logging.getLogger(__name__)
               help=f"Largest distance between two laths at a crossing (default: {GAP} × the "
                    "mean edge length of the nets).")
 @click.option("-o", "--output", "output", required=True,
-              type=click.Path(dir_okay=False, path_type=Path),
+              type=OutputPath(),
               help="Output stem: writes STEM.json, STEM.obj (laths as polylines) and STEM.csv "
                    "(cut list).")
 @force_opt

@@ -50,9 +50,9 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
               help="fit: gpc on a reference; developable: nearly developable (Jacobi (8)); "
                    "revolution: isometric to a surface of revolution (7); isometric: "
                    "isometric deformation by handles.")
-@click.option("--reference", type=click.Path(dir_okay=False, path_type=Path),
+@click.option("--reference", type=click.Path(path_type=Path),
               help="Reference triangle mesh (OBJ/PLY/STL/OFF) for the approximation term.")
-@click.option("--handles", type=click.Path(dir_okay=False, path_type=Path),
+@click.option("--handles", type=click.Path(path_type=Path),
               help='Handles JSON: {"handles": [{"index": [u, v], "target": [x, y, z]} | '
                    '{"index": [u, v], "offset": [dx, dy, dz]}]}.')
 @click.option("--steps", type=click.IntRange(min=1), default=1, show_default=True,

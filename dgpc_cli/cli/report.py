@@ -7,6 +7,7 @@ from pathlib import Path
 import click
 
 from dgpc_cli.cli.inspect import artifact_kind
+from dgpc_cli.cli.output_path import OutputPath
 from dgpc_cli.io.artifact import artifact_paths
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.stages.report import previous_report_files, report_files
@@ -15,7 +16,7 @@ from dgpc_cli.stages.report import previous_report_files, report_files
 @click.command(short_help="Write figures of an artifact (PNG) and an index.html.")
 @click.argument("stem", type=click.Path(path_type=Path))
 @click.option("-o", "--output", "output", required=True,
-              type=click.Path(dir_okay=False, path_type=Path),
+              type=OutputPath(),
               help="Prefix: writes PREFIX-<figure>.png and PREFIX-index.html.")
 @click.option("--force", is_flag=True, help="Overwrite existing output files.")
 def report(stem, output, force):
