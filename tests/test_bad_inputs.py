@@ -8,11 +8,13 @@ import json
 import shutil
 
 import click
+import numpy as np
 import pytest
 from cli_helpers import dgpc
 
 from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.main import COMMANDS, cli
+from dgpc_cli.io.net import NetArtifact, write_net
 
 
 @pytest.fixture(scope="module")
@@ -24,6 +26,12 @@ def sample(tmp_path_factory):
     dgpc("planarize-strips", d / "cat", "-o", d / "strips")
     dgpc("unfold", d / "strips", "-o", d / "flat")
     dgpc("extract-mold", d / "cat", "-o", d / "mold")
+    dgpc("nest", d / "flat", "--sheet", "2500x1250", "--scale", 100, "-o", d / "sheets")
+    u, v = np.meshgrid(np.linspace(0, 4, 6), np.linspace(0, 4, 5), indexing="ij")
+    for name, (x, y) in (("la", (v, u)), ("lb", (u, v))):  # two crossing families
+        z = 0.1 * np.sin(y) * np.cos(x)
+        write_net(d / name, NetArtifact(f=np.stack([x, y, z], axis=-1)))
+    dgpc("laths", d / "la", d / "lb", "-o", d / "shell")
     return d
 
 
@@ -63,6 +71,8 @@ def copy_artifact(src_json, dst_folder, name, edit=None):
     doc["data"]["obj"] = f"{name}.obj"
     for record in doc["data"].get("files", {}).values():
         record["path"] = name + record["path"][len(stem):]
+    if "cut_list" in doc["data"]:
+        doc["data"]["cut_list"] = name + doc["data"]["cut_list"][len(stem):]
     if edit is not None:
         edit(doc)
     (dst_folder / f"{name}.json").write_text(json.dumps(doc))
@@ -246,3 +256,64 @@ def test_a_folder_as_an_input_file_is_bad_data(sample, tmp_path, args):
     args = [str(a).format(d=sample, x=x) for a in args]
     out = [] if args[0] == "inspect" else ["-o", tmp_path / "out"]
     run_bad([sample, tmp_path], [*args, *out], 1, "in", "directory")
+
+
+# -- item 4: the OBJs of every artifact are parsed and checked against their JSON --------------
+
+def _vertex_line(lines, k=0):
+    return [i for i, line in enumerate(lines) if line.startswith(b"v ")][k]
+
+
+def _edit_lines(change):
+    def edit(data):
+        lines = data.splitlines()
+        change(lines)
+        return b"\n".join(lines) + b"\n"
+    return edit
+
+
+OBJ_EDITS = {
+    "garbage": lambda data: bytes(range(256)) * 8,
+    "text": lambda data: b"this is not an OBJ file\n",
+    "empty": lambda data: b"",
+    "truncated": lambda data: data[: len(data) // 2].rsplit(b"\n", 1)[0] + b"\n",
+    "vertex-removed": _edit_lines(lambda ls: ls.pop(_vertex_line(ls, 1))),
+    "vertex-added": _edit_lines(lambda ls: ls.insert(_vertex_line(ls) + 1, b"v 0.5 0.5 0.0")),
+    "nan": _edit_lines(lambda ls: ls.__setitem__(_vertex_line(ls, 1), b"v nan 0.0 0.0")),
+    "inf": _edit_lines(lambda ls: ls.__setitem__(_vertex_line(ls, 2), b"v 1.0 1e999 0.0")),
+}
+
+#: kind -> (the OBJ's suffix, its sha256 field, the commands that read it; {x} the artifact).
+OBJ_READERS = {
+    "flat": (".obj", ("obj_sha256",), [["nest", "{x}", "--sheet", "2500x1250", "--scale", 100],
+                                       ["inspect", "{x}"]]),
+    "mold": (".obj", ("obj_sha256",), [["nest", "{d}/flat", "--mold", "{x}", "--sheet",
+                                        "2500x1250", "--scale", 100]]),
+    "mold-panels": (".panels.obj", ("files", "panels_obj", "sha256"), [["inspect", "{x}"]]),
+    "sheets": (".obj", ("obj_sha256",), [["report", "{x}"], ["inspect", "{x}"]]),
+    "strips": (".obj", ("obj_sha256",), [["unfold", "{x}"], ["inspect", "{x}"]]),
+    "shell": (".obj", ("obj_sha256",), [["inspect", "{x}"], ["report", "{x}"]]),
+}
+
+
+@pytest.mark.parametrize("edit", sorted(OBJ_EDITS))
+@pytest.mark.parametrize("kind", sorted(OBJ_READERS))
+def test_edited_obj_with_its_hash_updated(sample, tmp_path, kind, edit):
+    """Garbage, truncated, one vertex less or more, NaN or inf in the OBJ of any artifact,
+    the sha256 in its JSON updated to match: exit 1, one line naming the OBJ."""
+    suffix, field, commands = OBJ_READERS[kind]
+    data = OBJ_EDITS[edit]((sample / f"{kind.split('-')[0]}{suffix}").read_bytes())
+
+    def update(doc):
+        record = doc["data"]
+        for key in field[:-1]:
+            record = record[key]
+        record[field[-1]] = hashlib.sha256(data).hexdigest()
+
+    bad = copy_artifact(sample / f"{kind.split('-')[0]}.json", tmp_path, "bad", update)
+    (tmp_path / f"bad{suffix}").write_bytes(data)
+    for command in commands:
+        args = [str(a).format(d=sample, x=bad) for a in command]
+        out = [] if args[0] == "inspect" else ["-o", tmp_path / "out"]
+        result = run_bad([sample, tmp_path], [*args, *out], 1, f"bad{suffix}")
+        assert result.stdout == ""
