@@ -6,11 +6,13 @@ from pathlib import Path
 
 import click
 
+from dgpc_cli.cli.output_path import OutputPath
+
 
 @click.command(short_help="Write figures of an artifact (PNG) and an index.html.")
 @click.argument("stem", type=click.Path(path_type=Path))
 @click.option("-o", "--output", "output", required=True,
-              type=click.Path(dir_okay=False, path_type=Path),
+              type=OutputPath(),
               help="Prefix: writes PREFIX-<figure>.png and PREFIX-index.html.")
 @click.option("--force", is_flag=True, help="Overwrite existing output files.")
 def report(stem, output, force):
@@ -43,11 +45,11 @@ def report(stem, output, force):
     from dgpc_cli.cli.inspect import artifact_kind
     from dgpc_cli.io.artifact import artifact_paths
     from dgpc_cli.io.atomic import write_files
-    from dgpc_cli.stages.report import report_files
+    from dgpc_cli.stages.report import previous_report_files, report_files
 
     json_path, _ = artifact_paths(stem)
     kind = artifact_kind(json_path)
     files = report_files(json_path, kind, output)
-    write_files(files, force=force)
+    write_files(files, force=force, replaces=previous_report_files(output))
     for p in files:
         click.echo(str(p))

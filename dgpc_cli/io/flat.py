@@ -42,6 +42,7 @@ from .artifact import (
     relative_input,
     resolve_input,
 )
+from .obj import check_obj_objects, parse_obj
 from .strips import format_parts_obj, read_obj_checked
 from .units import DEFAULT_UNITS, mm_per_unit
 
@@ -147,7 +148,9 @@ def read_flat(stem: str | Path) -> FlatArtifact:
     json_path, obj_path = artifact_paths(stem)
     doc = load_envelope(json_path, KIND)
     data = doc["data"]
-    read_obj_checked(json_path, obj_path, data["obj_sha256"])
+    obj = parse_obj(read_obj_checked(json_path, obj_path, data["obj_sha256"]), obj_path)
+    check_obj_objects(obj, [(p["id"], 2 * len(p["geodesics"][0])) for p in data["parts"]],
+                      obj_path, "data.parts")
     for key, record in data["files"].items():
         read_listed(resolve_input(record, json_path), record["sha256"], json_path,
                     f"data.files.{key}")

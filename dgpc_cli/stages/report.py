@@ -29,6 +29,7 @@ Figures are made with matplotlib's Agg backend in its default style
 from __future__ import annotations
 
 import logging
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -368,6 +369,20 @@ def _prefix_text(prefix: Path) -> str:
         if text.lower().endswith(suffix):
             return text[: -len(suffix)]
     return text
+
+
+def previous_report_files(prefix: Path) -> list[Path]:
+    """The figures that an earlier report of ``-o PREFIX`` wrote: the ``PREFIX-*.png`` its
+    ``PREFIX-index.html`` links (in its folder only; none when there is no such index), for
+    ``--force`` to remove those the new report does not write."""
+    html_path = Path(_prefix_text(prefix) + "-index.html")
+    try:
+        html = html_path.read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return []
+    start = html_path.name[: -len("index.html")]
+    names = set(re.findall(r'src="([^"/\\]+\.png)"', html))
+    return [html_path.parent / n for n in sorted(names) if n.startswith(start)]
 
 
 def report_files(json_path: Path, kind: str, prefix: Path) -> dict[Path, bytes]:
