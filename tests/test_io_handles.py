@@ -62,9 +62,9 @@ def test_invalid(tmp_path, handles, message):
 
 @pytest.mark.parametrize("raw, message", [
     ('{"handles": [{"index": [0, 0], "target": [0, NaN, 0]}]}',
-     r"handles\[0\]\.target: non-finite number"),
+     r"handles\[0\]\.target\[1\]: non-finite number \(NaN\)"),
     ('{"handles": [{"index": [0, 0], "offset": [1e999, 0, 0]}]}',
-     r"handles\[0\]\.offset: non-finite number"),
+     r"handles\[0\]\.offset\[0\]: non-finite number \(inf\)"),
     ('{"handles": [', "not valid JSON"),
     ('[]', r"\(top level\): must be of type object, got array"),
     ('{"handle": []}', "handles: missing required field"),

@@ -12,6 +12,7 @@ from cli_helpers import dgpc, metrics
 from outline_meshes import clipped_dome, roof, write
 
 from dgpc_cli.core.reference import ReferenceSurface
+from dgpc_cli.io.flat import read_flat
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.strips import read_strips
@@ -107,6 +108,8 @@ def test_trimmed_strips_clad_the_whole_roof(extended, meshes):
     total = flat["metrics"]["total_area"]
     assert 0.98 * area <= total <= 1.001 * area
     assert all(p.get("trimmed") for p in flat["data"]["parts"])
+    # its OBJ (outlines and score lines, not quad strips) reads back against the JSON
+    assert len(read_flat(f"{extended}-flat").parts) == len(flat["data"]["parts"])
     # the end cuts follow the outline: every cut point (inside the strip's width) lies on the
     # roof's boundary, within a small fraction of the strip width
     strips = read_strips(f"{extended}-s")

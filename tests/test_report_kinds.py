@@ -1,5 +1,5 @@
-"""``dgpc report`` on every artifact kind: PNG figures that decode, are not blank, are
-byte-deterministic, and an index.html that shows them with the metric names (issue 7 item 4)."""
+"""``dgpc report`` on every artifact kind: each kind's figures (PNG at their sizes, not blank,
+byte-deterministic) and an index.html that shows them with the metrics grouped and their units."""
 
 import json
 import re
@@ -10,11 +10,18 @@ from cli_helpers import dgpc
 from PIL import Image
 
 from dgpc_cli.io.net import NetArtifact, read_net, write_net
+from dgpc_cli.report.clairaut import CLAIRAUT_SIZE
+from dgpc_cli.report.convergence import CONVERGENCE_SIZE
+from dgpc_cli.report.mold import PAIRING_SIZE, PIECES_SIZE, PROFILE_SIZE
 from dgpc_cli.report.render import DPI
+from dgpc_cli.report.tables import ITEMS
+from dgpc_cli.report.views import VIEWS_SIZE
 from dgpc_cli.surfaces.minding import minding_bend
 
-#: Figure sizes in inches, as rendered (see dgpc_cli.report.net).
-NET_SIZE, CLAIRAUT_SIZE, PROFILE_SIZE = (6.4, 5.2), (6.4, 4.0), (5.0, 6.0)
+#: Figure sizes in inches, as rendered; the 3-D figures (width, curvature, strain) are
+#: VIEWS_SIZE, the flat parts' pages fit their content.
+SIZES = {"clairaut": CLAIRAUT_SIZE, "convergence": CONVERGENCE_SIZE, "profile": PROFILE_SIZE,
+         "pairing-net1": PAIRING_SIZE, "pieces": PIECES_SIZE}
 
 
 @pytest.fixture(scope="module")
@@ -56,8 +63,9 @@ def _check_index(path, pngs, metrics):
     assert text.startswith("<!DOCTYPE html>") and "<script" not in text
     for png in pngs:
         assert f'src="{png}"' in text
-    for name in metrics:
-        assert f"<td>{name}" in text, name
+    for name in metrics:                 # every metric: rows of its own or a table per item
+        assert f"<td>{name}" in text or f"<summary>{ITEMS.get(name)} (" in text, name
+    assert "<td>steps[" not in text and "history" not in text     # no solver history rows
     return text
 
 
@@ -67,19 +75,18 @@ def _report(sample, stem, prefix):
 
 @pytest.mark.parametrize("stem, names", [
     ("net", ["width", "curvature", "clairaut"]),
-    ("iso", ["width", "curvature", "strain"]),     # deformed: no longer on the surface
+    ("iso", ["width", "curvature", "strain", "convergence"]),   # deformed: off the surface
     ("strips", ["width"]),
     ("flat", ["overlay", "strips"]),
-    ("mold", ["profile"]),
+    ("mold", ["profile", "pairing-net1", "pieces"]),
 ])
 def test_report_figures_and_index(sample, stem, names):
     out = _report(sample, stem, f"{stem}-a")
     pngs = [f"{stem}-a-{n}.png" for n in names]
     assert out == [str(sample / p) for p in pngs] + [str(sample / f"{stem}-a-index.html")]
     for n in names:
-        size = {"clairaut": CLAIRAUT_SIZE, "profile": PROFILE_SIZE}.get(n, NET_SIZE)
         if stem != "flat":
-            _check_png(sample / f"{stem}-a-{n}.png", size)
+            _check_png(sample / f"{stem}-a-{n}.png", SIZES.get(n, VIEWS_SIZE))
     doc = json.loads((sample / f"{stem}.json").read_text())
     assert doc["metrics"]
     _check_index(sample / f"{stem}-a-index.html", pngs, doc["metrics"])
@@ -95,25 +102,32 @@ def test_report_figures_and_index(sample, stem, names):
 def test_curvature_is_red_blue_white(sample):
     """A catenoid has K < 0 everywhere: its quads are blue, none red (Fig. 17 colours)."""
     _report(sample, "net", "colours")
-    rgb = _check_png(sample / "colours-curvature.png", NET_SIZE)
-    plot = rgb[:, : int(0.75 * rgb.shape[1])]                 # left of the colour bar
+    rgb = _check_png(sample / "colours-curvature.png", VIEWS_SIZE)
+    plot = rgb[: int(0.85 * rgb.shape[0])]                    # above the colour bar
     r, g, b = plot[..., 0], plot[..., 1], plot[..., 2]
     blue = (b > 150) & (r < 120) & (g < 120)
     red = (r > 150) & (b < 120) & (g < 120)
     assert blue.sum() > 200 and red.sum() == 0
 
 
-def test_sheets_index_links_the_nest_previews(sample):
+def test_sheets_report_shows_every_preview(sample):
+    """One figure per sheet (the preview nest wrote, pixel for pixel, with a legend), linked
+    from the index with a relative path; the header states the sheet size in its unit."""
     out = _report(sample, "sheets", "sh")
-    assert out == [str(sample / "sh-index.html")]
     doc = json.loads((sample / "sheets.json").read_text())
+    count = doc["data"]["sheet_count"]
+    assert count >= 1
+    assert out == [str(sample / f"sh-sheet{i + 1:02d}.png") for i in range(count)] + \
+        [str(sample / "sh-index.html")]
     text = (sample / "sh-index.html").read_text()
     hrefs = re.findall(r'<img src="([^"]+)"', text)
-    assert len(hrefs) == doc["data"]["sheet_count"] >= 1
-    for href in hrefs:
-        assert not href.startswith("/")                       # relative to the page
-        assert (sample / href).is_file()
-        Image.open(sample / href).verify()
+    assert hrefs == [f"sh-sheet{i + 1:02d}.png" for i in range(count)]
+    for i, sheet in enumerate(doc["data"]["sheets"]):
+        figure = Image.open(sample / hrefs[i])
+        preview = Image.open(sample / doc["data"]["files"][sheet["png"]]["path"])
+        assert figure.size[0] > preview.size[0] and figure.size[1] > preview.size[1]
+    sheet = doc["data"]["sheet"]
+    assert f"{sheet['width']:g} × {sheet['height']:g} {doc['data']['units']}" in text
     for name in doc["metrics"]:
         assert f"<td>{name}" in text
 
@@ -123,7 +137,8 @@ def test_strain_figure_needs_the_input_net(sample, tmp_path):
     for ext in (".json", ".obj"):
         (tmp_path / f"iso{ext}").write_bytes((sample / f"iso{ext}").read_bytes())
     out = dgpc("report", tmp_path / "iso", "-o", tmp_path / "r").stdout.split()
-    assert [p.rsplit("-", 1)[1] for p in out] == ["width.png", "curvature.png", "index.html"]
+    assert [p.rsplit("-", 1)[1] for p in out] == ["width.png", "curvature.png",
+                                                  "convergence.png", "index.html"]
 
 
 def test_existing_files_need_force(sample):
@@ -134,7 +149,7 @@ def test_existing_files_need_force(sample):
 
 
 def test_metrics_table_flattens_and_summarises():
-    from dgpc_cli.report.html import LIST_MAX, flatten
+    from dgpc_cli.report.tables import LIST_MAX, flatten
 
     rows = dict(flatten({"b": {"x": 1.0, "y": None}, "a": [1, 2],
                          "long": list(range(LIST_MAX + 1)),
@@ -148,17 +163,18 @@ def test_metrics_table_flattens_and_summarises():
 
 def test_lengths_are_labelled_with_the_unit(tmp_path):
     """A net in ft: its figures' axes and the index's table name the unit of every length."""
-    from dgpc_cli.report.html import metric_unit
+    from dgpc_cli.report.tables import metric_unit
 
     dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 7, "--cols", 5,
          "--span", 120, "--units", "ft", "-o", tmp_path / "net")
     dgpc("report", tmp_path / "net", "-o", tmp_path / "r")
     text = (tmp_path / "r-index.html").read_text()
     assert "lengths in <b>ft</b>" in text
-    assert re.search(r"<tr><td>edges\.max</td><td>[0-9.e-]+</td><td>ft</td></tr>", text)
-    assert re.search(r"<tr><td>gaussian_curvature\.max</td><td>[0-9.e-]+</td>"
+    assert re.search(r"<tr><td>edges\.max</td><td class=.v.>[0-9.e-]+</td><td>ft</td></tr>",
+                     text)
+    assert re.search(r"<tr><td>gaussian_curvature\.max</td><td class=.v.>[0-9.e-]+</td>"
                      r"<td>1/ft²</td></tr>", text)
-    assert re.search(r"<tr><td>R</td><td>[0-9.e-]+</td><td></td></tr>", text)
+    assert re.search(r"<tr><td>R</td><td class=.v.>[0-9.e-]+</td><td></td></tr>", text)
     assert [metric_unit(k, "m") for k in ("per_part.S-v01.length", "total_area",
                                           "hausdorff.relative", "hausdorff.max",
                                           "strain.max", "clairaut.max_relative_mad")] == \

@@ -13,6 +13,8 @@ from pathlib import Path
 
 import click
 
+from dgpc_cli.cli.output_path import OutputPath
+
 log = logging.getLogger(__name__)
 
 
@@ -85,7 +87,7 @@ def _client(scheduler: str | None, workers: int | None):
 @click.command(short_help="Run a project of many patches (a facade, a sweep) on Dask.")
 @click.argument("project", type=click.Path(exists=True, dir_okay=False, path_type=Path))
 @click.option("-o", "--output", "out", required=True,
-              type=click.Path(file_okay=False, path_type=Path),
+              type=OutputPath(folder=True),
               help="Output folder: DIR/PATCH/ per patch, DIR/shared/ (molds, sheets), "
                    "DIR/batch.json and DIR/index.html.")
 @click.option("--scheduler", metavar="ADDRESS",

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import click
 
+from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.options import (
     check_units,
     check_writable,
@@ -40,19 +41,19 @@ log = logging.getLogger(__name__)
 @click.option("--segments", type=click.IntRange(min=2), default=None,
               help="N, segments of the surface of revolution per full turn "
                    "[default: n−1 of the first net, one full turn].")
-@click.option("--lambda", "lam", type=click.FloatRange(min=0, min_open=True), default=None,
+@click.option("--lambda", "lam", type=FiniteFloat(min=0, min_open=True), default=None,
               help="Minding's λ (Prop. 4.3) relative to the full-turn surface: N = λ·(n−1).")
 @click.option("--panel-size", type=click.IntRange(min=1), default=DEFAULT_PANEL_SIZE,
               show_default=True, help="K: a panel is a K×K block of net quads.")
-@click.option("--flat-tol", type=click.FloatRange(min=0), default=DEFAULT_FLAT_TOL,
+@click.option("--flat-tol", type=FiniteFloat(min=0), default=DEFAULT_FLAT_TOL,
               show_default=True,
               help="A panel is flat (no mold) where |K|·l² = |δ_uu w / w| ≤ T on all of it.")
-@click.option("--mold-max-length", type=click.FloatRange(min=0, min_open=True), default=None,
+@click.option("--mold-max-length", type=FiniteFloat(min=0, min_open=True), default=None,
               help="Longest mold piece along the meridian (net units) [default: no limit].")
-@click.option("--tol", type=click.FloatRange(min=0, min_open=True), default=None,
+@click.option("--tol", type=FiniteFloat(min=0, min_open=True), default=None,
               help="Relative tolerance of equation (5) and of the comparison between nets "
                    "[default: twice --max-strain].")
-@click.option("--max-strain", type=click.FloatRange(min=0, min_open=True),
+@click.option("--max-strain", type=FiniteFloat(min=0, min_open=True),
               default=DEFAULT_MAX_STRAIN, show_default=True,
               help="Largest relative difference of a panel's edges and diagonals from its "
                    "mold patch; a net with a panel further off is refused.")

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import click
 
+from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.options import (
     check_writable,
     force_opt,
@@ -73,7 +74,7 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
 
 @click.command(short_help="Make an initial net.",
                epilog="Built-in profiles:\n\n\b\n" + describe_builtins())
-@click.argument("reference", required=False, type=click.Path(dir_okay=False, path_type=Path))
+@click.argument("reference", required=False, type=click.Path(path_type=Path))
 @click.option("--surface", type=click.Choice(["revolution"]),
               help="Analytic surface: 'revolution' (profile revolved about the z axis).")
 @click.option("--profile", metavar="NAME|FILE",
@@ -98,10 +99,10 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
 @click.option("--direction", metavar="x,y,z",
               help="Direction for --method: normal of the base plane (geodesic) or of the "
                    "projection (project).")
-@click.option("--angle", type=float, metavar="DEG",
+@click.option("--angle", type=FiniteFloat(), metavar="DEG",
               help="In-plane angle, degrees: geodesic: the base plane's normal turned about "
                    "the mesh's normal axis; project: the grid turned about the direction.")
-@click.option("--from-quads", "from_quads", type=click.Path(dir_okay=False, path_type=Path),
+@click.option("--from-quads", "from_quads", type=click.Path(path_type=Path),
               metavar="FILE.obj",
               help="Import a regular quad net from an OBJ file: the m×n grid is detected, the "
                    "family with the smaller gpc angle defect becomes the geodesics (u-lines). "
@@ -109,7 +110,7 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
 @click.option("--largest-component", is_flag=True,
               help="Keep the largest connected piece of REFERENCE instead of rejecting a mesh "
                    "of several pieces.")
-@click.option("--extend", type=click.FloatRange(min=0), default=0.0, show_default=True,
+@click.option("--extend", type=FiniteFloat(min=0), default=0.0, show_default=True,
               metavar="FRACTION",
               help="With --method: let the net run beyond the mesh's outer boundary by up to "
                    "FRACTION of its bounding-box diagonal (paper Fig. 14): the net is traced "
@@ -120,12 +121,12 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
               help="m: vertices along the geodesics (default with a mesh: square quads).")
 @click.option("--cols", "cols", type=click.IntRange(min=3),
               help="n: vertices across the geodesics (default with a mesh: 21).")
-@click.option("--spacing", type=click.FloatRange(min=0, min_open=True),
+@click.option("--spacing", type=FiniteFloat(min=0, min_open=True),
               help="With a mesh, instead of --cols: vertex spacing in model units (also along "
                    "the geodesics unless --rows is given).")
-@click.option("--span", "span", type=float, default=180.0, show_default=True,
+@click.option("--span", "span", type=FiniteFloat(), default=180.0, show_default=True,
               help="--surface: angle covered by the v-lines, degrees (360: a full ring).")
-@click.option("--twist", type=float, default=0.0, show_default=True,
+@click.option("--twist", type=FiniteFloat(), default=0.0, show_default=True,
               help="--surface: shear T, radians: the angle of f(u, v) gets T·s(u)/s_total "
                    "added, so the initial u-lines are not meridians (paper Fig. 11).")
 @click.option("--reference-out", type=click.Path(dir_okay=False, path_type=Path),

@@ -8,7 +8,9 @@ from pathlib import Path
 import click
 import numpy as np
 
+from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.options import force_opt, format_opt
+from dgpc_cli.cli.output_path import OutputPath
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
@@ -25,11 +27,11 @@ log = logging.getLogger(__name__)
 @click.command(short_help="Gridshell laths of two nets and their cut list.")
 @click.argument("net_a", type=click.Path(path_type=Path))
 @click.argument("net_b", type=click.Path(path_type=Path))
-@click.option("--gap", type=click.FloatRange(min=0, min_open=True),
+@click.option("--gap", type=FiniteFloat(min=0, min_open=True),
               help=f"Largest distance between two laths at a crossing (default: {GAP} × the "
                    "mean edge length of the nets).")
 @click.option("-o", "--output", "output", required=True,
-              type=click.Path(dir_okay=False, path_type=Path),
+              type=OutputPath(),
               help="Output stem: writes STEM.json, STEM.obj (laths as polylines) and STEM.csv "
                    "(cut list).")
 @force_opt

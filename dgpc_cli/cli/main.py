@@ -88,6 +88,11 @@ class DgpcGroup(click.Group):
         except DgpcError as err:
             click.echo(f"Error: {err}", err=True)
             ctx.exit(err.exit_code)
+        except click.UsageError as err:
+            # One line, as every error (SPEC §2): click's own display adds the usage lines.
+            command = f" (see '{err.ctx.command_path} --help')" if err.ctx is not None else ""
+            click.echo(f"Error: {' '.join(err.format_message().split())}{command}", err=True)
+            ctx.exit(err.exit_code)
         except (click.exceptions.Exit, click.ClickException, click.Abort):
             raise
         except Exception as err:  # noqa: BLE001 - the last line of defence

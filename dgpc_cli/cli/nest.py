@@ -7,6 +7,7 @@ from pathlib import Path
 
 import click
 
+from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.options import (
     check_units,
     check_writable,
@@ -55,22 +56,22 @@ def _parsed(parser):
               help="A mold artifact: also write the panel-to-mold map DXF.")
 @click.option("--sheet", "sheet_size", required=True, callback=_parsed(parse_sheet),
               metavar="WIDTHxHEIGHT", help="Sheet size in mm, e.g. 2500x1250.")
-@click.option("--margin", type=click.FloatRange(min=0), default=10.0, show_default=True,
+@click.option("--margin", type=FiniteFloat(min=0), default=10.0, show_default=True,
               help="Free border of each sheet (mm).")
-@click.option("--spacing", type=click.FloatRange(min=0), default=3.0, show_default=True,
+@click.option("--spacing", type=FiniteFloat(min=0), default=3.0, show_default=True,
               help="Least distance between parts, the kerf (mm).")
 @click.option("--rotations", default="0,180", show_default=True,
               callback=_parsed(parse_rotations), metavar="DEG,DEG,...",
               help="Allowed rotations in degrees (grain or rolling direction).")
 @units_check_opt
-@click.option("--scale", type=click.FloatRange(min=0, min_open=True), default=1.0,
+@click.option("--scale", type=FiniteFloat(min=0, min_open=True), default=1.0,
               show_default=True,
               help="Model scale (a scale model): 1 unit of the parts is SCALE units in the DXF "
                    "(mm).")
 @click.option("--engine", type=click.Choice(ENGINES), default="fill", show_default=True,
               help="'fill': deterministic no-fit-polygon fill; 'spyrrow': spyrrow's strip "
                    "packer sheet by sheet (time-bounded, see --time-limit).")
-@click.option("--time-limit", type=click.FloatRange(min=0, min_open=True), default=10.0,
+@click.option("--time-limit", type=FiniteFloat(min=0, min_open=True), default=10.0,
               show_default=True, metavar="SEC",
               help="spyrrow's time budget per sheet (engine spyrrow).")
 @click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True,

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import click
 
+from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
 from dgpc_cli.cli.progress import SolverProgress
 from dgpc_cli.core.reference import ReferenceSurface
@@ -55,13 +56,13 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
               help="fit: gpc on a reference; developable: nearly developable (Jacobi (8)); "
                    "revolution: isometric to a surface of revolution (7); isometric: "
                    "isometric deformation by handles.")
-@click.option("--reference", type=click.Path(dir_okay=False, path_type=Path),
+@click.option("--reference", type=click.Path(path_type=Path),
               help="Reference triangle mesh (OBJ/PLY/STL/OFF) for the approximation term "
                    "[default: the one the net records].")
 @click.option("--no-reference", is_flag=True,
               help="Drop the reference the net records: no approximation or boundary term, "
                    "and the new net records none.")
-@click.option("--handles", type=click.Path(dir_okay=False, path_type=Path),
+@click.option("--handles", type=click.Path(path_type=Path),
               help='Handles JSON: {"handles": [{"index": [u, v], "target": [x, y, z]} | '
                    '{"index": [u, v], "offset": [dx, dy, dz]}]}.')
 @click.option("--steps", type=click.IntRange(min=1), default=1, show_default=True,
@@ -73,15 +74,15 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
               help="Iteration limit of the whole run, handle steps and the final projection "
                    f"onto the hard constraints included [default: {TOL.max_iter} for each "
                    "step and for the projection].")
-@click.option("--tol", type=click.FloatRange(min=0, min_open=True), default=TOL.solver_R,
+@click.option("--tol", type=FiniteFloat(min=0, min_open=True), default=TOL.solver_R,
               show_default=True, help="Tolerance on the residual of the hard constraints "
                                       "(net scaled to mean edge length 1).")
-@click.option("--max-strain", type=click.FloatRange(min=0, min_open=True),
+@click.option("--max-strain", type=FiniteFloat(min=0, min_open=True),
               default=TOL.max_strain, show_default=True,
               help="revolution: largest relative error of a quad's edges and diagonals against "
                    "the surface of revolution; isometric: largest strain |λ1|+|λ2| against the "
                    "input (§6.1); above it the net is not converged (3e-4: 0.3 mm per metre).")
-@click.option("--gpc-tol", type=click.FloatRange(min=0, min_open=True), default=TOL.gpc_tol,
+@click.option("--gpc-tol", type=FiniteFloat(min=0, min_open=True), default=TOL.gpc_tol,
               show_default=True,
               help="isometric: largest angle defect of (6), radians, that counts as converged.")
 @click.option("--solver", "backend", type=click.Choice(["auto", *BACKENDS]), default="auto",

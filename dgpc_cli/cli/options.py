@@ -7,12 +7,13 @@ from pathlib import Path
 
 import click
 
+from dgpc_cli.cli.output_path import OutputPath
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths
 from dgpc_cli.io.units import UNIT_MM
 
 output_opt = click.option(
-    "-o", "--output", "output", required=True, type=click.Path(dir_okay=False, path_type=Path),
+    "-o", "--output", "output", required=True, type=OutputPath(),
     help="Output artifact stem: writes STEM.json and STEM.obj.")
 force_opt = click.option("--force", is_flag=True, help="Overwrite existing output files.")
 format_opt = click.option(

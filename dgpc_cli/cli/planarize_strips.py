@@ -7,6 +7,7 @@ from pathlib import Path
 
 import click
 
+from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt, progressbar
 from dgpc_cli.errors import DgpcError, NotConverged
 from dgpc_cli.io.artifact import artifact_paths, file_input
@@ -44,7 +45,7 @@ def _outline(net, json_path):
 @click.option("--strips", "strip_range", metavar="V0:V1",
               help="Only the strips V0 to V1, both included (strip v lies between the u-lines "
                    "v and v+1; default: all).")
-@click.option("--flat-angle", type=click.FloatRange(min=0), default=FLAT_ANGLE,
+@click.option("--flat-angle", type=FiniteFloat(min=0), default=FLAT_ANGLE,
               show_default=True,
               help="Rows where the strip normals turn by less than this (radians per row) are "
                    "flat: their rulings are averaged from the nearest non-flat rows.")

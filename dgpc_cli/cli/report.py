@@ -6,16 +6,13 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.cli.inspect import artifact_kind
-from dgpc_cli.io.artifact import artifact_paths
-from dgpc_cli.io.atomic import write_files
-from dgpc_cli.stages.report import report_files
+from dgpc_cli.cli.output_path import OutputPath
 
 
 @click.command(short_help="Write figures of an artifact (PNG) and an index.html.")
 @click.argument("stem", type=click.Path(path_type=Path))
 @click.option("-o", "--output", "output", required=True,
-              type=click.Path(dir_okay=False, path_type=Path),
+              type=OutputPath(),
               help="Prefix: writes PREFIX-<figure>.png and PREFIX-index.html.")
 @click.option("--force", is_flag=True, help="Overwrite existing output files.")
 def report(stem, output, force):
@@ -24,20 +21,35 @@ def report(stem, output, force):
 
     \b
     net     PREFIX-width.png (strip width), PREFIX-curvature.png (Gaussian curvature K, red
-            positive / blue negative / white 0, Fig. 17), PREFIX-strain.png (isometric
-            optimization with its input net at hand, Fig. 13), PREFIX-clairaut.png (net with
-            a recorded axis of revolution, Fig. 11); 3-D views from one fixed angle
+            positive / blue negative / white 0, Fig. 17), PREFIX-coverage.png (the net over
+            its recorded reference, uncovered area orange), PREFIX-strain.png (isometric
+            optimization with its input net at hand: principal directions over |λ1| + |λ2|,
+            Fig. 13), PREFIX-clairaut.png (net with a recorded axis of revolution, Fig. 11),
+            PREFIX-convergence.png (the solver history of an optimized net)
     strips  PREFIX-width.png (the planar-quad strips coloured by width)
-    flat    PREFIX-overlay.png, PREFIX-strips.png (developed strips, Fig. 18)
-    mold    PREFIX-profile.png (the meridian profile)
+    flat    PREFIX-overlay.png (one cell per congruence class), PREFIX-strips.png (the
+            developed parts laid out like a sheet, Fig. 18)
+    mold    PREFIX-profile.png (the meridian profile), PREFIX-pairing-netK.png (each panel on
+            the mold and on design net K in one colour, Fig. 16), PREFIX-pieces.png (mold
+            pieces and flat panels, Fig. 17)
     laths   PREFIX-laths.png (the two lath families of a gridshell, Fig. 14)
-    sheets  the index links the sheet previews written by dgpc nest
+    sheets  PREFIX-sheetNN.png, PREFIX-moldmap.png (the previews of dgpc nest with a legend
+            of their layers)
 
-    Prints the paths written, the index last.
+    \b
+    3-D figures show the model in three views (axonometric, plan, elevation), each framed
+    on its bounding box, with a scale bar in the artifact's unit. The index has a header
+    (what, from which inputs, status) and the metrics grouped into geometry, fabrication
+    and solver with their units. Prints the paths written, the index last.
     """
+    from dgpc_cli.cli.inspect import artifact_kind
+    from dgpc_cli.io.artifact import artifact_paths
+    from dgpc_cli.io.atomic import write_files
+    from dgpc_cli.stages.report import previous_report_files, report_files
+
     json_path, _ = artifact_paths(stem)
     kind = artifact_kind(json_path)
     files = report_files(json_path, kind, output)
-    write_files(files, force=force)
+    write_files(files, force=force, replaces=previous_report_files(output))
     for p in files:
         click.echo(str(p))

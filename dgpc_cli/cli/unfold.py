@@ -7,6 +7,7 @@ from pathlib import Path
 
 import click
 
+from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
@@ -30,14 +31,14 @@ log = logging.getLogger(__name__)
 @click.argument("stem", type=click.Path(path_type=Path))
 @click.option("--mirror-ok", is_flag=True,
               help="Count mirror images as congruent (parts that may be flipped over).")
-@click.option("--congruence-tol", type=click.FloatRange(min=0, min_open=True),
+@click.option("--congruence-tol", type=FiniteFloat(min=0, min_open=True),
               default=CONGRUENCE_TOL, show_default=True,
               help="Strips are congruent when, optimally aligned, no point of their outlines "
                    "is farther apart than this fraction of the strip length.")
-@click.option("--stock-length", type=click.FloatRange(min=0, min_open=True), metavar="L",
+@click.option("--stock-length", type=FiniteFloat(min=0, min_open=True), metavar="L",
               help="Cut every strip longer than L (in the strips' unit) at rulings into boards "
                    "no longer than L: part ids S-v07.1, S-v07.2, ...")
-@click.option("--stagger", type=click.FloatRange(min=0), metavar="D",
+@click.option("--stagger", type=FiniteFloat(min=0), metavar="D",
               help="With --stock-length: no joint of a strip within D (along the geodesic) of "
                    f"a joint of the strips beside it [default: {STAGGER_FRACTION:g} L].")
 @output_opt

@@ -118,6 +118,32 @@ def read_listed(path: Path, sha256: str, json_path: Path, field: str) -> bytes:
     return data
 
 
+def listed_files(json_path: str | Path) -> list[Path]:
+    """The files an existing artifact ``json_path`` lists besides itself (``data.obj``, each
+    ``data.files`` record, ``data.rhino_3dm``, ``data.cut_list``), for ``--force`` to remove
+    those a new artifact of the same stem no longer writes.
+
+    Only files in the artifact's own folder named ``STEM.*`` count (a path that leads
+    elsewhere is never followed); a missing or unreadable JSON lists nothing.
+    """
+    json_path = Path(json_path)
+    try:
+        doc = json.loads(json_path.read_bytes())
+    except (OSError, ValueError):
+        return []
+    data = doc.get("data") if isinstance(doc, dict) else None
+    if not isinstance(data, dict) or doc.get("kind") not in KINDS:
+        return []
+    names = [data.get("obj"), data.get("cut_list"), (data.get("rhino_3dm") or {}).get("path")]
+    files = data.get("files")
+    if isinstance(files, dict):
+        names += [r.get("path") for r in files.values() if isinstance(r, dict)]
+    prefix = json_path.name[: -len(".json")] + "."
+    return [json_path.parent / n for n in names
+            if isinstance(n, str) and "/" not in n and "\\" not in n and n.startswith(prefix)
+            and n != json_path.name]
+
+
 def artifact_paths(stem: str | Path) -> tuple[Path, Path]:
     """``(STEM.json, STEM.obj)`` for a stem given as ``STEM``, ``STEM.json`` or ``STEM.obj``."""
     text = os.fspath(stem)

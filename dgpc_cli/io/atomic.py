@@ -6,9 +6,11 @@ import logging
 import os
 import secrets
 import tempfile
+from collections.abc import Iterable
 from pathlib import Path
 
 from ..errors import DgpcError
+from .artifact import listed_files
 
 log = logging.getLogger(__name__)
 
@@ -66,7 +68,25 @@ def _fsync_dir(directory: Path) -> None:
         os.close(fd)
 
 
-def write_files(files: dict[Path, bytes], *, force: bool = False) -> None:
+def _stale_files(targets: list[Path], replaces: Iterable[Path]) -> list[Path]:
+    """Files of the previous output (listed by its artifact JSONs, or in ``replaces``) that are
+    not among ``targets``."""
+    keep = {os.path.abspath(p) for p in targets}
+    previous = [*replaces]
+    for path in targets:
+        if path.suffix == ".json" and path.is_file():
+            previous += listed_files(path)
+    stale, seen = [], set()
+    for path in previous:
+        key = os.path.abspath(path)
+        if key not in keep and key not in seen and Path(path).is_file():
+            seen.add(key)
+            stale.append(Path(path))
+    return stale
+
+
+def write_files(files: dict[Path, bytes], *, force: bool = False,
+                replaces: Iterable[Path] = ()) -> None:
     """Write every ``path → bytes`` of ``files`` or none of them.
 
     All targets are checked first (parent directory exists; target absent unless ``force``),
@@ -75,9 +95,15 @@ def write_files(files: dict[Path, bytes], *, force: bool = False) -> None:
     removed, targets already replaced in this call are restored from a hard-link backup (or
     removed if they did not exist before), and the error is raised (an ``OSError`` as a
     DgpcError naming the file).
+
+    With ``force``, the files of the output being replaced that the new set does not hold are
+    removed once every new file is in place: those that each existing artifact JSON among the
+    targets lists (:func:`~dgpc_cli.io.artifact.listed_files`; nest sheets of a previous,
+    longer layout) and ``replaces`` (e.g. the figures an earlier report linked).
     """
     items = [(Path(p), bytes(d)) for p, d in files.items()]
     _check_targets([p for p, _ in items], force)
+    stale = _stale_files([p for p, _ in items], replaces) if force else []
     umask = os.umask(0)
     os.umask(umask)
     mode = 0o666 & ~umask
@@ -113,6 +139,14 @@ def write_files(files: dict[Path, bytes], *, force: bool = False) -> None:
     for bak in backups.values():
         if bak is not None:
             bak.unlink(missing_ok=True)
+    for path in stale:
+        try:
+            path.unlink(missing_ok=True)
+        except OSError as e:
+            log.warning("%s: stale file of the previous output not removed: %s", path,
+                        e.strerror or e)
+    if stale:
+        log.debug("removed %s", ", ".join(str(p) for p in stale))
     for directory in {p.parent for p, _ in items}:
         _fsync_dir(directory)
     log.debug("wrote %s", ", ".join(str(p) for p, _ in items))

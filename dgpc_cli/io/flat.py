@@ -42,6 +42,7 @@ from .artifact import (
     relative_input,
     resolve_input,
 )
+from .obj import check_obj_objects, parse_obj
 from .strips import format_parts_obj, read_obj_checked
 from .units import DEFAULT_UNITS, mm_per_unit
 
@@ -143,13 +144,23 @@ def flat_files(stem: str | Path, art: FlatArtifact) -> dict[Path, bytes]:
     return {**files, csv_path(stem): table}
 
 
+def _obj_vertices(part: dict) -> int:
+    """Vertices of a part's OBJ object: 2 per row, or for a part trimmed to the reference's
+    outline those of its outline and score lines."""
+    if part.get("trimmed"):
+        return len(part["outline"]) + sum(len(line) for line in part["score"])
+    return 2 * len(part["geodesics"][0])
+
+
 def read_flat(stem: str | Path) -> FlatArtifact:
     """Read and validate a flat artifact: envelope, schema, the OBJ's hash, and the classes'
     consistency with the parts (every part in exactly one class, quantities match)."""
     json_path, obj_path = artifact_paths(stem)
     doc = load_envelope(json_path, KIND)
     data = doc["data"]
-    read_obj_checked(json_path, obj_path, data["obj_sha256"])
+    obj = parse_obj(read_obj_checked(json_path, obj_path, data["obj_sha256"]), obj_path)
+    check_obj_objects(obj, [(p["id"], _obj_vertices(p)) for p in data["parts"]], obj_path,
+                      "data.parts")
     for key, record in data["files"].items():
         read_listed(resolve_input(record, json_path), record["sha256"], json_path,
                     f"data.files.{key}")

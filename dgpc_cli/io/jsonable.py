@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 from functools import cache
 from importlib import resources
 from pathlib import Path
@@ -52,11 +53,71 @@ def read_json(path: str | Path) -> Any:
         raise DgpcError("not a JSON file (not UTF-8 text)", source=path) from None
     except OSError as e:
         raise DgpcError(f"cannot read: {e.strerror or e}", source=path) from None
+    numbers = _NumberCheck()
     try:
-        return json.loads(text)
+        doc = json.loads(text, parse_float=numbers.float, parse_int=numbers.int,
+                         parse_constant=numbers.constant)
     except json.JSONDecodeError as e:
         raise DgpcError(f"not valid JSON: {e.msg} at line {e.lineno}, column {e.colno}",
                         source=path) from None
+    except ValueError as e:  # an integer of more digits than Python converts
+        raise DgpcError(f"not valid JSON: {e}", source=path) from None
+    if numbers.bad:
+        where, what = first_non_finite(doc)
+        raise DgpcError(f"{where}: non-finite number ({what})", source=path)
+    return doc
+
+
+class _NumberCheck:
+    """Hooks of ``json.loads`` that note a non-finite number: the constants ``NaN``,
+    ``Infinity`` and ``-Infinity`` that Python's json accepts, and numbers beyond the float
+    range (``1e999`` parses to inf), so that :func:`read_json` can name the field."""
+
+    def __init__(self):
+        self.bad = False
+
+    def float(self, text: str) -> float:
+        value = float(text)
+        if not math.isfinite(value):
+            self.bad = True
+        return value
+
+    def int(self, text: str) -> int:
+        value = int(text)
+        if abs(value) > _FLOAT_MAX:
+            self.bad = True
+        return value
+
+    def constant(self, text: str) -> float:
+        self.bad = True
+        return float(text)
+
+
+_FLOAT_MAX = sys.float_info.max
+
+
+def _non_finite(value: Any) -> bool:
+    if isinstance(value, float):
+        return not math.isfinite(value)
+    return isinstance(value, int) and not isinstance(value, bool) and abs(value) > _FLOAT_MAX
+
+
+def first_non_finite(doc: Any) -> tuple[str, str] | None:
+    """``(field, what)`` of the first number in ``doc`` (document order) that is not a finite
+    float: ``what`` is ``"NaN"``, ``"inf"``, ``"-inf"`` or ``"an integer beyond the float
+    range"``; None when every number is finite."""
+    stack: list[tuple[tuple, Any]] = [((), doc)]
+    while stack:
+        parts, value = stack.pop()
+        if isinstance(value, dict):
+            stack.extend(((*parts, k), v) for k, v in reversed(list(value.items())))
+        elif isinstance(value, list):
+            stack.extend(((*parts, i), v) for i, v in reversed(list(enumerate(value))))
+        elif _non_finite(value):
+            what = ("NaN" if math.isnan(value) else repr(value)) if isinstance(value, float) \
+                else "an integer beyond the float range"
+            return field_path(parts), what
+    return None
 
 
 def schema_exists(name: str) -> bool:

@@ -20,6 +20,7 @@ from .artifact import (
     sha256_bytes,
     validate_envelope,
 )
+from .obj import parse_obj
 
 KIND = "laths"
 CSV_HEADER = ("lath_id", "family", "length", "n_crossings", "crossings", "crossing_laths")
@@ -100,6 +101,8 @@ def parse_cut_list(text: str, source) -> list[dict]:
                          "crossing_laths": [i for i in ids.split(";") if i]})
         except ValueError:
             raise DgpcError(f"line {k} is not a cut-list row", source=source) from None
+        if not np.isfinite([rows[-1]["length"], *rows[-1]["crossings"]]).all():
+            raise DgpcError(f"line {k}: a non-finite length or crossing", source=source)
     return rows
 
 
@@ -150,8 +153,16 @@ def read_laths(stem: str | Path) -> LathsArtifact:
     obj = read_listed(obj_path, data["obj_sha256"], json_path, "data.obj_sha256")
     csv_path = json_path.parent / data["cut_list"]
     csv = read_listed(csv_path, data["cut_list_sha256"], json_path, "data.cut_list_sha256")
-    polylines = parse_polylines(obj.decode("ascii"))
-    rows = parse_cut_list(csv.decode("ascii"), csv_path)
+    objects = parse_obj(obj, obj_path).objects  # text, finite, lines join existing vertices
+    polylines = parse_polylines(obj.decode("utf-8"))
+    for o in objects:
+        if o.lines != 1 or o.vertices != len(polylines.get(o.name, ())):
+            raise DgpcError(f"object {o.name!r}: {o.vertices} vertices and {o.lines} polylines, "
+                            "expected one polyline through all of them", source=obj_path)
+    try:
+        rows = parse_cut_list(csv.decode("ascii"), csv_path)
+    except UnicodeDecodeError:
+        raise DgpcError("not a dgpc cut list (not text)", source=csv_path) from None
     counts = {f: sum(r["family"] == f for r in rows) for f in ("A", "B")}
     if [r["lath_id"] for r in rows] != list(polylines) or counts != data["laths"]:
         raise DgpcError(f"the cut list, the OBJ and data.laths {data['laths']} do not list the "

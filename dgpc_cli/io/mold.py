@@ -38,7 +38,7 @@ from .artifact import (
     relative_input,
     resolve_input,
 )
-from .obj import net_quads
+from .obj import check_obj_objects, net_quads, parse_obj
 
 KIND = "mold"
 #: Extra files of a mold artifact: data.files key → suffix after the stem.
@@ -250,6 +250,32 @@ def check_mold_data(data: dict, source: Path) -> None:
                             f"{len(data['nets'])} nets", source=source)
 
 
+def _check_objs(data: dict, json_path: Path) -> None:
+    """The mold OBJ (objects surface and sector, the sector's faces grouped by piece) and the
+    panels OBJ (one object per net, its faces grouped by panel) against the JSON."""
+    path = resolve_input({"path": data["obj"]}, json_path)
+    obj = parse_obj(read_listed(path, data["obj_sha256"], json_path, "data.obj"), path)
+    m = data["rows"]
+    check_obj_objects(obj, [("surface", m * data["surface"]["columns"]),
+                            ("sector", m * data["sector"]["columns"])], path,
+                      "data.rows × data.surface/sector.columns")
+    pieces = [p["id"] for p in data["pieces"]]
+    if obj.objects[1].groups not in (pieces, [*pieces, "no-mold"]):
+        raise DgpcError(f"the sector's groups {obj.objects[1].groups} are not the mold pieces "
+                        f"{pieces} of data.pieces", source=path)
+    record = data["files"]["panels_obj"]
+    path = resolve_input(record, json_path)
+    obj = parse_obj(read_listed(path, record["sha256"], json_path, "data.files.panels_obj"),
+                    path)
+    check_obj_objects(obj, [(f"net{k + 1}", math.prod(net["shape"]))
+                            for k, net in enumerate(data["nets"])], path, "data.nets")
+    for k, o in enumerate(obj.objects):
+        panels = [p["id"] for p in data["panels"] if p["net"] == k]
+        if o.groups != panels:
+            raise DgpcError(f"object {o.name!r}: its groups are not the panels of data.panels "
+                            f"on net{k + 1}", source=path)
+
+
 def read_mold(stem: str | Path) -> MoldArtifact:
     """Read and validate a mold artifact: envelope and schema, consistency, the OBJ and the
     extra files present and unchanged (sha256)."""
@@ -261,8 +287,9 @@ def read_mold(stem: str | Path) -> MoldArtifact:
         check_mold_data(data, json_path)
     except DgpcError as err:
         raise DgpcError(f"not a valid mold artifact: {err.reason}", source=err.source) from None
-    _check_file({"path": data["obj"], "sha256": data["obj_sha256"]}, json_path, "data.obj")
+    _check_objs(data, json_path)
     for key, record in data["files"].items():
-        _check_file(record, json_path, f"data.files.{key}")
+        if key != "panels_obj":
+            _check_file(record, json_path, f"data.files.{key}")
     return MoldArtifact(parameters=doc["parameters"], inputs=doc["inputs"], data=data,
                         metrics=doc["metrics"], status=doc["status"])

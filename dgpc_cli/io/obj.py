@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -67,3 +68,121 @@ def parse_net_obj(data: bytes, m: int, n: int, source: str | Path) -> np.ndarray
         raise DgpcError(f"vertex {k + 1} (u, v) = ({k // n}, {k % n}) has a non-finite "
                         f"coordinate {f[k].tolist()}", source=source)
     return f.reshape(m, n, 3)
+
+
+@dataclass
+class ObjObject:
+    """One ``o`` object of an OBJ: its name, vertex count, ``g`` groups (in order) and how many
+    faces and polylines it has."""
+
+    name: str | None
+    vertices: int = 0
+    groups: list[str] = field(default_factory=list)
+    faces: int = 0
+    lines: int = 0
+
+
+@dataclass
+class ObjContents:
+    """What an artifact's OBJ holds: every vertex ``(k, 3)`` and its objects in file order
+    (vertices before the first ``o`` belong to an object named None)."""
+
+    vertices: np.ndarray
+    objects: list[ObjObject]
+
+    def names(self) -> list[str | None]:
+        return [o.name for o in self.objects]
+
+    def object_vertices(self, k: int) -> np.ndarray:
+        """The vertices of object ``k`` (objects hold consecutive vertices)."""
+        start = sum(o.vertices for o in self.objects[:k])
+        return self.vertices[start:start + self.objects[k].vertices]
+
+
+#: Statements of the OBJ format that the artifacts' OBJs may carry and that are skipped.
+_SKIPPED = {"vt", "vn", "vp", "s", "usemtl", "mtllib", "cstype", "deg", "mg"}
+
+
+def parse_obj(data: bytes, source: str | Path) -> ObjContents:
+    """Parse the OBJ of an artifact (written by dgpc: ``v``, ``o``, ``g``, ``f``, ``l``).
+
+    DgpcError naming ``source`` (and the line) for anything else: not text, an unknown
+    statement, a vertex without 3 numbers or with a non-finite one, a face or line that refers
+    to a vertex not defined before it (negative, relative indices included), a vertex that no
+    face or line uses (dgpc's OBJs use each)."""
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise DgpcError("not an OBJ file (binary data, not text)", source=source) from None
+    if "\0" in text:
+        raise DgpcError("not an OBJ file (binary data, not text)", source=source)
+    rows: list[tuple[float, float, float]] = []
+    lines_of: list[int] = []
+    objects = [ObjObject(None)]
+    used: set[int] = set()
+    for lineno, raw in enumerate(text.splitlines(), 1):
+        parts = raw.split()
+        if not parts or parts[0].startswith("#"):
+            continue
+        key = parts[0]
+        if key == "v":
+            try:
+                rows.append((float(parts[1]), float(parts[2]), float(parts[3])))
+            except (ValueError, IndexError):
+                raise DgpcError(f"line {lineno}: a vertex needs 3 numbers, got "
+                                f"{raw.strip()[:60]!r}", source=source) from None
+            lines_of.append(lineno)
+            objects[-1].vertices += 1
+        elif key in ("f", "l"):
+            try:
+                idx = [int(p.split("/")[0]) for p in parts[1:]]
+            except ValueError:
+                raise DgpcError(f"line {lineno}: not vertex numbers in {raw.strip()[:60]!r}",
+                                source=source) from None
+            if len(idx) < (3 if key == "f" else 2) or not all(0 < i <= len(rows) for i in idx):
+                raise DgpcError(f"line {lineno}: {'face' if key == 'f' else 'line'} "
+                                f"{raw.strip()[:60]!r} does not join vertices defined before "
+                                f"it ({len(rows)})", source=source)
+            used.update(idx)
+            if key == "f":
+                objects[-1].faces += 1
+            else:
+                objects[-1].lines += 1
+        elif key == "o":
+            objects.append(ObjObject(" ".join(parts[1:])))
+        elif key == "g":
+            objects[-1].groups.append(" ".join(parts[1:]))
+        elif key not in _SKIPPED:
+            raise DgpcError(f"line {lineno}: not an OBJ statement: {raw.strip()[:40]!r}",
+                            source=source)
+    if objects[0].vertices == 0 and not objects[0].groups and len(objects) > 1:
+        objects.pop(0)
+    vertices = np.array(rows, dtype=np.float64).reshape(-1, 3)
+    bad = np.flatnonzero(~np.isfinite(vertices).all(axis=1))
+    if bad.size:
+        raise DgpcError(f"line {lines_of[int(bad[0])]}: vertex {int(bad[0]) + 1} has a "
+                        "non-finite coordinate", source=source)
+    if len(used) != len(rows):
+        k = min(set(range(1, len(rows) + 1)) - used)
+        raise DgpcError(f"line {lines_of[k - 1]}: vertex {k} is used by no face or line",
+                        source=source)
+    return ObjContents(vertices=vertices, objects=objects)
+
+
+def check_obj_objects(obj: ObjContents, expected: list[tuple[str, int | None]], source,
+                      what: str) -> None:
+    """The objects of ``obj`` are ``expected`` = ``[(name, vertex count or None), ...]`` in
+    this order; DgpcError naming ``source`` and ``what`` (the JSON field they come from)."""
+    names = obj.names()
+    want = [n for n, _ in expected]
+    if names != want:
+        k = next((i for i, (a, b) in enumerate(zip(names, want, strict=False)) if a != b),
+                 min(len(names), len(want)))
+        got = names[k] if k < len(names) else "(none)"
+        raise DgpcError(f"{len(names)} objects, {what} lists {len(want)}; object {k + 1} is "
+                        f"{got!r}, expected {want[k] if k < len(want) else '(none)'!r}",
+                        source=source)
+    for o, (name, count) in zip(obj.objects, expected, strict=True):
+        if count is not None and o.vertices != count:
+            raise DgpcError(f"object {name!r} has {o.vertices} vertices, {what} implies "
+                            f"{count}", source=source)

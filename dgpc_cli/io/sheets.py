@@ -33,6 +33,7 @@ from .artifact import (
     relative_input,
     resolve_input,
 )
+from .obj import check_obj_objects, parse_obj
 
 KIND = "sheets"
 #: Gap between sheets in the OBJ, as a fraction of the sheet width.
@@ -95,6 +96,19 @@ def _check_file(record: dict, json_path: Path, field: str) -> None:
     read_listed(resolve_input(record, json_path), record["sha256"], json_path, field)
 
 
+def _check_obj(data: dict, json_path: Path) -> None:
+    """The OBJ: one object per sheet (its id), in it a closed polyline for the sheet and one
+    group with one polyline per part placed on it (the order of data.placements)."""
+    path = resolve_input({"path": data["obj"]}, json_path)
+    obj = parse_obj(read_listed(path, data["obj_sha256"], json_path, "data.obj"), path)
+    check_obj_objects(obj, [(s["id"], None) for s in data["sheets"]], path, "data.sheets")
+    for k, o in enumerate(obj.objects):
+        parts = [p["part"] for p in data["placements"] if p["sheet"] == k]
+        if o.groups != parts or o.lines != 1 + len(parts):
+            raise DgpcError(f"object {o.name!r}: {len(o.groups)} parts in {o.lines} polylines, "
+                            f"data.placements puts {len(parts)} parts on it", source=path)
+
+
 def read_sheets(stem: str | Path) -> SheetsArtifact:
     """Read and validate a sheets artifact: envelope and schema, the sheet indices and counts,
     the OBJ and every listed file present and unchanged (sha256)."""
@@ -113,7 +127,7 @@ def read_sheets(stem: str | Path) -> SheetsArtifact:
     ids = [p["part"] for p in data["placements"]]
     if len(set(ids)) != len(ids):
         raise DgpcError("data.placements: a part is placed more than once", source=json_path)
-    _check_file({"path": data["obj"], "sha256": data["obj_sha256"]}, json_path, "data.obj")
+    _check_obj(data, json_path)
     for key, record in data["files"].items():
         _check_file(record, json_path, f"data.files.{key}")
     return SheetsArtifact(path=json_path, parameters=doc["parameters"], inputs=doc["inputs"],

@@ -21,7 +21,7 @@ from .artifact import (
     load_envelope,
     read_listed,
 )
-from .obj import _vertex_rows
+from .obj import _vertex_rows, check_obj_objects, parse_obj
 from .units import DEFAULT_UNITS, stored
 
 KIND = "strips"
@@ -126,6 +126,8 @@ def read_strips(stem: str | Path) -> StripsArtifact:
     data = doc["data"]
     obj_bytes = read_obj_checked(json_path, obj_path, data["obj_sha256"])
     records = data["strips"]
+    check_obj_objects(parse_obj(obj_bytes, obj_path), [(r["id"], 2 * r["rows"]) for r in records],
+                      obj_path, "data.strips")
     geometry = parse_parts_obj(obj_bytes, [r["rows"] for r in records], obj_path)
     return StripsArtifact(geometry=geometry, records=records,
                           source_shape=tuple(data["source_shape"]), units=data["units"],

@@ -18,7 +18,7 @@ import numpy as np
 from dgpc_cli.metrics.frames import as_grid
 from dgpc_cli.metrics.hausdorff import net_triangles
 
-__all__ = ["coverage", "subdivision_samples"]
+__all__ = ["coverage", "covered_faces", "subdivision_samples"]
 
 #: Samples aimed at on the reference.
 DEFAULT_SAMPLES = 60_000
@@ -57,20 +57,14 @@ def _boundary_edge_mask(m: int, n: int) -> np.ndarray:
     return np.concatenate([low, upp])
 
 
-def coverage(f, ref_vertices, ref_faces, *, samples: int = DEFAULT_SAMPLES) -> dict:
-    """Area coverage of the reference by the net ``f (m, n, 3)`` and vertex distances::
-
-        {"area_fraction": covered / reference area, "covered_area", "reference_area",
-         "vertex_distance_max": max distance of a net vertex to the reference,
-         "vertex_distance_relative": the same / the reference's bounding-box diagonal}
-    """
+def _covered_samples(f: np.ndarray, rv: np.ndarray, rf: np.ndarray, samples: int):
+    """The samples of :func:`subdivision_samples` on the reference and whether the net ``f``
+    covers each: ``(covered (s,) bool, weight (s,), nv, nf)``, the last two the net's
+    triangles (:func:`~dgpc_cli.metrics.hausdorff.net_triangles`)."""
     import igl
 
-    f = as_grid(f)
     m, n, _ = f.shape
     nv, nf = net_triangles(f)
-    rv = np.ascontiguousarray(ref_vertices, dtype=float)
-    rf = np.ascontiguousarray(ref_faces, dtype=np.int64)
     pts, weight = subdivision_samples(rv, rf, samples)
     d2, fid, closest = igl.point_mesh_squared_distance(pts, nv, nf)
     fid = np.asarray(fid, dtype=np.int64)
@@ -83,7 +77,22 @@ def coverage(f, ref_vertices, ref_faces, *, samples: int = DEFAULT_SAMPLES) -> d
     du = np.linalg.norm(f[1:] - f[:-1], axis=-1)
     dv = np.linalg.norm(f[:, 1:] - f[:, :-1], axis=-1)
     reach = float((du.sum() + dv.sum()) / (du.size + dv.size))
-    covered = ~on_boundary & (np.sqrt(d2) <= reach)
+    return ~on_boundary & (np.sqrt(d2) <= reach), weight, nv, nf
+
+
+def coverage(f, ref_vertices, ref_faces, *, samples: int = DEFAULT_SAMPLES) -> dict:
+    """Area coverage of the reference by the net ``f (m, n, 3)`` and vertex distances::
+
+        {"area_fraction": covered / reference area, "covered_area", "reference_area",
+         "vertex_distance_max": max distance of a net vertex to the reference,
+         "vertex_distance_relative": the same / the reference's bounding-box diagonal}
+    """
+    import igl
+
+    f = as_grid(f)
+    rv = np.ascontiguousarray(ref_vertices, dtype=float)
+    rf = np.ascontiguousarray(ref_faces, dtype=np.int64)
+    covered, weight, nv, _ = _covered_samples(f, rv, rf, samples)
     total = float(weight.sum())
     vd2, _, _ = igl.point_mesh_squared_distance(np.ascontiguousarray(nv), rv, rf)
     vmax = float(np.sqrt(np.max(vd2)))
@@ -92,3 +101,15 @@ def coverage(f, ref_vertices, ref_faces, *, samples: int = DEFAULT_SAMPLES) -> d
             "covered_area": float(weight[covered].sum()), "reference_area": total,
             "vertex_distance_max": vmax,
             "vertex_distance_relative": vmax / diagonal if diagonal > 0 else None}
+
+
+def covered_faces(f, ref_vertices, ref_faces, *, samples: int = DEFAULT_SAMPLES
+                  ) -> np.ndarray:
+    """The fraction ``(t,)`` of each reference face that the net ``f (m, n, 3)`` covers, by
+    the samples and the test of :func:`coverage` (so that the area-weighted sum over the faces
+    is its ``covered_area``)."""
+    f = as_grid(f)
+    rf = np.ascontiguousarray(ref_faces, dtype=np.int64)
+    covered, _, _, _ = _covered_samples(f, np.ascontiguousarray(ref_vertices, dtype=float),
+                                        rf, samples)
+    return covered.reshape(len(rf), -1).mean(axis=1)

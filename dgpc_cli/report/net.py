@@ -1,29 +1,73 @@
-"""Figures of nets and molds: quads coloured by a field, the Clairaut plot, the mold profile,
-and the laths of a gridshell.
+"""Figures of nets in the three standard views (:mod:`.views`): quads coloured by a field, the
+reference mesh under the net, the strain glyphs of paper Fig. 13, and the laths of a gridshell.
 
-Nets are drawn in 3-D (``mpl_toolkits.mplot3d``) from one fixed view (elevation
-:data:`ELEVATION`, azimuth :data:`AZIMUTH`, equal axis scales, axes hidden), every quad filled
-with the colour of its value; quads without a value (NaN) are light grey. Fields per quad:
+Fields per quad:
 
 * strip width (§3.1): the mean of the quad's two v-edge lengths (viridis);
 * discrete Gaussian curvature K (Jacobi equation (1), :func:`gaussian_curvature`): the mean of
   the finite K at the quad's two v-edges, red positive, blue negative, white ≈ 0 (``bwr`` on a
-  range symmetric about 0, as the paper's Fig. 17);
-* strain |λ1| + |λ2| against the input net (Fig. 13): the mean over the quad's finite corners.
+  range symmetric about 0, as the paper's Fig. 17).
+
+Quads without a value (NaN) are light grey. The reference mesh, when at hand, is drawn under
+the net, translucent grey where the net covers it and orange where it does not
+(:func:`~dgpc_cli.metrics.coverage.covered_faces`), so that uncovered area shows.
+
+The strain figure (:func:`strain_figure`) colours the area around every vertex (its quarter of
+each adjacent quad) with the vertex's ``|λ1| + |λ2|`` and draws at every interior vertex the
+principal directions of the strain tensor D (§6.1) as a cross: one arm along each eigenvector,
+as long as its eigenvalue's magnitude (the largest arm 0.9 mean edges), black for stretch (λ > 0)
+and blue for compression (λ < 0). Boundary vertices have one-sided tensors and no glyph.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
 from dgpc_cli.metrics.curvature import gaussian_curvature, strip_widths
 
-from .render import figure, png_bytes
+from .scene import Polygons, Segments, grid_quads
+from .views import ColourBar, views_figure
 
-#: The fixed 3-D view of every net figure (degrees).
-ELEVATION, AZIMUTH = 28.0, -60.0
+__all__ = ["Reference", "curvature_per_quad", "field_figure", "laths_figure",
+           "strain_figure", "vertex_to_quad", "width_per_quad"]
+
 #: Colour of quads without a value.
 MISSING = (0.85, 0.85, 0.85, 1.0)
+#: Reference faces: covered by the net (translucent grey), not covered (orange).
+COVERED, UNCOVERED = (0.55, 0.55, 0.55, 0.25), (1.0, 0.5, 0.05, 0.75)
+#: Strain glyphs: stretch, compression.
+STRETCH, COMPRESSION = (0.0, 0.0, 0.0, 1.0), (0.0, 0.25, 0.95, 1.0)
+#: Smallest span of a colour bar of a one-signed field, relative to its middle value: a field
+#: constant to within it (a developable's strip width) is one colour, its ticks plain numbers.
+MIN_SPAN = 1e-3
+#: Length of the largest glyph arm, in mean edge lengths.
+GLYPH_ARM = 0.9
+
+
+@dataclass
+class Reference:
+    """A reference mesh ``vertices (k, 3)``, ``faces (t, 3)`` and the fraction ``(t,)`` of
+    each face the net covers; ``recorded`` the covered share of the artifact's metrics
+    (``coverage.area_fraction``), which the legend shows when given."""
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    covered: np.ndarray
+    recorded: float | None = None
+
+    @property
+    def share(self) -> float:
+        """The covered share the figure states: the recorded one, else :attr:`area_fraction`."""
+        return self.area_fraction if self.recorded is None else float(self.recorded)
+
+    @property
+    def area_fraction(self) -> float:
+        tri = self.vertices[self.faces]
+        area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]),
+                                    axis=1)
+        return float((area * self.covered).sum() / area.sum()) if area.sum() > 0 else 0.0
 
 
 def _nanmean(*arrays: np.ndarray) -> np.ndarray:
@@ -52,133 +96,158 @@ def vertex_to_quad(values: np.ndarray) -> np.ndarray:
     return _nanmean(v[:-1, :-1], v[1:, :-1], v[1:, 1:], v[:-1, 1:])
 
 
-def _quads(f: np.ndarray) -> np.ndarray:
-    """The quads of a grid ``f (m, n, 3)`` as ``((m − 1)(n − 1), 4, 3)``, row-major."""
-    q = np.stack([f[:-1, :-1], f[1:, :-1], f[1:, 1:], f[:-1, 1:]], axis=2)
-    return q.reshape(-1, 4, 3)
-
-
-def _equal_limits(ax, points: np.ndarray) -> None:
-    """Axis limits on the bounding box with one scale on all three axes (box aspect = the
-    box's extents, each at least 5 % of the largest, so flat nets stay visible)."""
-    lo, hi = points.min(axis=0), points.max(axis=0)
-    extent = hi - lo
-    big = float(extent.max()) or 1.0
-    extent = np.maximum(extent, 0.05 * big)
-    mid = 0.5 * (lo + hi)
-    ax.set_xlim(mid[0] - extent[0] / 2, mid[0] + extent[0] / 2)
-    ax.set_ylim(mid[1] - extent[1] / 2, mid[1] + extent[1] / 2)
-    ax.set_zlim(mid[2] - extent[2] / 2, mid[2] + extent[2] / 2)
-    ax.set_box_aspect(tuple(float(e) for e in extent))
-
-
-def grids_png(grids: list[np.ndarray], values: list[np.ndarray], *, title: str, label: str,
-              diverging: bool = False) -> bytes:
-    """PNG of the quad grids ``grids[i] (m_i, n_i, 3)`` in the fixed 3-D view, quad colours
-    from ``values[i] (m_i − 1, n_i − 1)`` with a colour bar labelled ``label``. ``diverging``:
-    red positive / blue negative / white 0 on a range symmetric about 0."""
+def _norm(values: np.ndarray, diverging: bool):
     from matplotlib import colormaps
-    from matplotlib.cm import ScalarMappable
     from matplotlib.colors import Normalize
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-    flat = np.concatenate([np.asarray(v, float).ravel() for v in values])
-    finite = flat[np.isfinite(flat)]
+    finite = values[np.isfinite(values)]
     if diverging:
         a = float(np.abs(finite).max()) if finite.size else 0.0
-        a = a if a > 0 else 1.0
-        norm, cmap = Normalize(-a, a), colormaps["bwr"]
-    else:
-        lo = float(finite.min()) if finite.size else 0.0
-        hi = float(finite.max()) if finite.size else 1.0
-        if hi <= lo:
-            hi = lo + (abs(lo) or 1.0) * 1e-9 + 1e-300
-        norm, cmap = Normalize(lo, hi), colormaps["viridis"]
-
-    fig = figure(6.4, 5.2)
-    ax = fig.add_subplot(1, 1, 1, projection="3d")
-    for f, v in zip(grids, values, strict=True):
-        f = np.asarray(f, float)
-        v = np.asarray(v, float).ravel()
-        colours = np.array([cmap(norm(x)) if np.isfinite(x) else MISSING for x in v])
-        ax.add_collection3d(Poly3DCollection(_quads(f), facecolors=colours,
-                                             edgecolors=(0.2, 0.2, 0.2, 0.6),
-                                             linewidths=0.2))
-    _equal_limits(ax, np.concatenate([np.asarray(f, float).reshape(-1, 3) for f in grids]))
-    ax.view_init(elev=ELEVATION, azim=AZIMUTH)
-    ax.set_axis_off()
-    ax.set_title(title, fontsize=9)
-    bar = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=ax, shrink=0.7, pad=0.02)
-    bar.set_label(label, fontsize=8)
-    bar.ax.tick_params(labelsize=7)
-    return png_bytes(fig)
+        return Normalize(-(a or 1.0), a or 1.0), colormaps["bwr"]
+    lo = float(finite.min()) if finite.size else 0.0
+    hi = float(finite.max()) if finite.size else 1.0
+    mid = 0.5 * (lo + hi)
+    if hi - lo < MIN_SPAN * (abs(mid) or 1.0):     # a constant field reads as one colour
+        pad = 0.5 * MIN_SPAN * (abs(mid) or 1.0)
+        lo, hi = mid - pad, mid + pad
+    return Normalize(lo, hi), colormaps["viridis"]
 
 
-def polylines_png(families: list[list[np.ndarray]], names: list[str], *, title: str) -> bytes:
-    """PNG of 3-D polylines (``(k, 3)`` each) in the fixed view of the net figures, one colour
-    per family, with a legend of ``names`` (the two lath families of a gridshell, Fig. 14)."""
-    fig = figure(6.4, 5.2)
-    ax = fig.add_subplot(1, 1, 1, projection="3d")
-    colours = ["tab:blue", "tab:red", "tab:green", "tab:orange"]
-    for k, (lines, name) in enumerate(zip(families, names, strict=True)):
-        for i, line in enumerate(lines):
-            p = np.asarray(line, float)
-            ax.plot(p[:, 0], p[:, 1], p[:, 2], color=colours[k % len(colours)], lw=0.8,
-                    label=name if i == 0 else None)
-    _equal_limits(ax, np.concatenate([np.asarray(p, float) for lines in families
-                                      for p in lines]))
-    ax.view_init(elev=ELEVATION, azim=AZIMUTH)
-    ax.set_axis_off()
-    ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=8, loc="upper right")
-    return png_bytes(fig)
+def _colours(values: np.ndarray, norm, cmap) -> np.ndarray:
+    v = np.asarray(values, float).ravel()
+    out = np.array(cmap(norm(np.where(np.isfinite(v), v, 0.0))), float).reshape(-1, 4)
+    out[~np.isfinite(v)] = MISSING
+    return out
 
 
-def clairaut_png(values: np.ndarray, f: np.ndarray, *, title: str, units: str) -> bytes:
-    """Paper Fig. 11: ``r cos α`` (``values (m, n)``) along every geodesic (u-line, column j of
-    ``f (m, n, 3)``) against the arclength along it; constant for a geodesic (9)."""
-    from matplotlib import colormaps
+def reference_layer(ref: Reference) -> Polygons:
+    """The reference's faces, covered ones grey and uncovered ones orange (gid ``reference``)."""
+    colours = np.where((np.asarray(ref.covered) >= 0.5)[:, None], COVERED, UNCOVERED)
+    return Polygons(np.asarray(ref.vertices, float)[np.asarray(ref.faces)], colours,
+                    "reference", edgecolor=(0, 0, 0, 0), linewidth=0.0)
 
-    values = np.asarray(values, float)
+
+def reference_legend(ref: Reference) -> list:
+    from matplotlib.patches import Patch
+
+    share = ref.share
+    return [Patch(facecolor=COVERED, edgecolor="0.5",
+                  label=f"reference, covered ({100 * share:.1f} %)"),
+            Patch(facecolor=UNCOVERED, edgecolor="0.5",
+                  label=f"reference, not covered ({100 * (1 - share):.1f} %)")]
+
+
+def field_figure(grids: list[np.ndarray], values: list[np.ndarray], *, title: str,
+                 label: str, unit: str, diverging: bool = False,
+                 reference: Reference | None = None, up=(0.0, 0.0, 1.0), front=None):
+    """The quad grids ``grids[i] (m_i, n_i, 3)`` in the standard views, quads coloured by
+    ``values[i] (m_i − 1, n_i − 1)`` with a colour bar labelled ``label``; ``diverging``: red
+    positive, blue negative, white 0 on a range symmetric about 0. Gid of the quads: ``net``."""
+    flat = np.concatenate([np.asarray(v, float).ravel() for v in values])
+    norm, cmap = _norm(flat, diverging)
+    quads = np.concatenate([grid_quads(f) for f in grids])
+    layers = [Polygons(quads, _colours(flat, norm, cmap), "net")]
+    legend = None
+    if reference is not None:
+        layers.insert(0, reference_layer(reference))
+        legend = reference_legend(reference)
+    return views_figure(layers, title=title, unit=unit, up=up, front=front,
+                        colour_bar=ColourBar(norm, cmap, label), legend=legend)
+
+
+def vertex_cells(f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Every quad's four corner quarters (corner, edge midpoints, centre): polygons
+    ``(4(m − 1)(n − 1), 4, 3)`` and the flat index ``u·n + v`` of the vertex each belongs to."""
     f = np.asarray(f, float)
-    n = values.shape[1]
-    cmap = colormaps["viridis"]
-    fig = figure(6.4, 4.0)
-    ax = fig.add_subplot(1, 1, 1)
-    for j in range(n):
-        s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(f[:, j], axis=0),
-                                                            axis=-1))])
-        ax.plot(s, values[:, j], lw=0.8, marker=".", ms=2,
-                color=cmap(j / max(n - 1, 1)))
-    ax.set_xlabel(f"arclength along the geodesic [{units}]", fontsize=8)
-    ax.set_ylabel(f"r cos α [{units}]", fontsize=8)
-    ax.set_title(title, fontsize=9)
-    ax.grid(True, lw=0.3)
-    ax.tick_params(labelsize=7)
-    fig.tight_layout()
-    return png_bytes(fig)
+    m, n = f.shape[:2]
+    q = grid_quads(f)                                           # corners 00, 10, 11, 01
+    centre = q.mean(axis=1)
+    u, v = np.meshgrid(np.arange(m - 1), np.arange(n - 1), indexing="ij")
+    corner_ids = np.stack([u * n + v, (u + 1) * n + v, (u + 1) * n + v + 1, u * n + v + 1],
+                          axis=-1).reshape(-1, 4)
+    cells, ids = [], []
+    for c in range(4):
+        prev_mid = 0.5 * (q[:, c] + q[:, (c - 1) % 4])
+        next_mid = 0.5 * (q[:, c] + q[:, (c + 1) % 4])
+        cells.append(np.stack([q[:, c], next_mid, centre, prev_mid], axis=1))
+        ids.append(corner_ids[:, c])
+    return np.concatenate(cells), np.concatenate(ids)
 
 
-def profile_png(r: np.ndarray, h: np.ndarray, *, unit: str, title: str) -> bytes:
-    """PNG of :func:`profile_figure`."""
-    return png_bytes(profile_figure(r, h, unit=unit, title=title))
+def strain_glyphs(f: np.ndarray, D: np.ndarray) -> tuple[Segments, Segments]:
+    """The two arms of the strain crosses at the interior vertices of ``f (m, n, 3)``
+    (``D (m, n, 2, 2)`` the strain tensors): along the λ1 and the λ2 eigenvector, each
+    ``((m − 2)(n − 2), 2, 3)`` centred on its vertex (gids ``strain-glyphs-1``, ``-2``)."""
+    from dgpc_cli.metrics.frames import tangent_frames
+    from dgpc_cli.metrics.strain import principal_strains
+
+    f = np.asarray(f, float)
+    lam1, lam2, theta = principal_strains(D)
+    Tu, Tv, _ = tangent_frames(f)
+    inner = (slice(1, -1), slice(1, -1))
+    c, s = np.cos(theta[inner])[..., None], np.sin(theta[inner])[..., None]
+    e1 = c * Tu[inner] + s * Tv[inner]
+    e2 = -s * Tu[inner] + c * Tv[inner]
+    l1, l2 = lam1[inner], lam2[inner]
+    big = float(np.nanmax(np.abs(np.concatenate([l1.ravel(), l2.ravel()])), initial=0.0))
+    edges = np.concatenate([np.linalg.norm(np.diff(f, axis=0), axis=-1).ravel(),
+                            np.linalg.norm(np.diff(f, axis=1), axis=-1).ravel()])
+    scale = 0.5 * GLYPH_ARM * float(edges.mean()) / big if big > 0 else 0.0
+    centre = f[inner]
+    arms = []
+    for k, (lam, e) in enumerate(((l1, e1), (l2, e2)), start=1):
+        half = np.nan_to_num(scale * np.abs(lam))[..., None] * np.nan_to_num(e)
+        segs = np.stack([centre - half, centre + half], axis=-2).reshape(-1, 2, 3)
+        colours = np.where((np.nan_to_num(lam) >= 0).ravel()[:, None], STRETCH, COMPRESSION)
+        arms.append(Segments(segs, colours, f"strain-glyphs-{k}", linewidth=0.9))
+    return arms[0], arms[1]
 
 
-def profile_figure(r: np.ndarray, h: np.ndarray, *, unit: str, title: str):
-    """The mold's meridian ``(r, h)`` with its mirror image and the axis, equal scales, the
-    axes labelled in ``unit``."""
-    r, h = np.asarray(r, float), np.asarray(h, float)
-    fig = figure(5.0, 6.0)
-    ax = fig.add_subplot(1, 1, 1)
-    ax.plot(r, h, lw=1.2, marker=".", ms=3, color="tab:blue", label="meridian")
-    ax.plot(-r, h, lw=0.6, ls="--", color="0.6")
-    ax.axvline(0.0, lw=0.6, ls="-.", color="k", label="axis")
-    ax.set_aspect("equal")
-    ax.set_xlabel(f"r [{unit}]", fontsize=8)
-    ax.set_ylabel(f"h [{unit}]", fontsize=8)
-    ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=7, loc="best")
-    ax.grid(True, lw=0.3)
-    ax.tick_params(labelsize=7)
-    fig.tight_layout()
-    return fig
+def strain_figure(f: np.ndarray, f0: np.ndarray, *, title: str, unit: str,
+                  up=(0.0, 0.0, 1.0), front=None):
+    """Paper Fig. 13: the strain of the net ``f`` against ``f0`` (both ``(m, n, 3)``), the area
+    around each vertex coloured by ``|λ1| + |λ2|`` (gid ``strain``) under the principal
+    directions at the interior vertices (:func:`strain_glyphs`)."""
+    from matplotlib import colormaps
+    from matplotlib.colors import Normalize
+    from matplotlib.lines import Line2D
+
+    from dgpc_cli.metrics.strain import principal_strains, strain_tensor
+
+    D = strain_tensor(f, f0)
+    lam1, lam2, _ = principal_strains(D)
+    amount = (np.abs(lam1) + np.abs(lam2)).ravel()
+    finite = amount[np.isfinite(amount)]
+    top = float(finite.max()) if finite.size and finite.max() > 0 else 1.0
+    norm, cmap = Normalize(0.0, top), colormaps["YlOrRd"]
+    cells, ids = vertex_cells(f)
+    arm1, arm2 = strain_glyphs(f, D)
+    layers = [Polygons(cells, _colours(amount[ids], norm, cmap), "strain",
+                       edgecolor=(0, 0, 0, 0), linewidth=0.0),
+              Polygons(grid_quads(f), np.zeros((len(grid_quads(f)), 4)), "net-edges",
+                       edgecolor=(0.3, 0.3, 0.3, 0.5), linewidth=0.25),
+              arm1, arm2]
+    legend = [Line2D([], [], color=STRETCH, lw=1.2, label="principal direction, stretch"),
+              Line2D([], [], color=COMPRESSION, lw=1.2,
+                     label="principal direction, compression")]
+    return views_figure(layers, title=title, unit=unit, up=up, front=front,
+                        colour_bar=ColourBar(norm, cmap, "strain |λ1| + |λ2| (dimensionless)"),
+                        legend=legend)
+
+
+def laths_figure(families: list[list[np.ndarray]], names: list[str], *, title: str,
+                 unit: str, up=(0.0, 0.0, 1.0)):
+    """3-D polylines (``(k, 3)`` each) in the standard views, one colour per family (gids
+    ``laths-<i>``), with a legend of ``names`` (the two lath families of a gridshell, Fig. 14)."""
+    from matplotlib.lines import Line2D
+
+    colours = [(0.12, 0.47, 0.71, 1.0), (0.84, 0.15, 0.16, 1.0), (0.17, 0.63, 0.17, 1.0)]
+    layers, legend = [], []
+    for k, (lines, name) in enumerate(zip(families, names, strict=True)):
+        segs = [np.stack([p[:-1], p[1:]], axis=1) for p in (np.asarray(x, float)
+                                                              for x in lines) if len(p) > 1]
+        colour = colours[k % len(colours)]
+        layers.append(Segments(np.concatenate(segs) if segs else np.zeros((0, 2, 3)), colour,
+                               f"laths-{k}", linewidth=0.8))
+        legend.append(Line2D([], [], color=colour, lw=1.5, label=name))
+    return views_figure(layers, title=title, unit=unit, up=up, legend=legend)

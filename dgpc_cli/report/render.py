@@ -1,16 +1,33 @@
 """Matplotlib figures rendered to PNG bytes, deterministically.
 
-Agg backend, no pyplot state, fixed size and resolution, and no ``Software`` text chunk (the
-only metadata matplotlib writes into a PNG that names its version); Agg writes no timestamp, so
-the same figure gives the same bytes on every run of the same matplotlib.
+Agg backend, no pyplot state, fixed sizes and resolution, matplotlib's own default style
+(:func:`style`: a user's ``matplotlibrc`` changes nothing) with a fixed ``svg.hashsalt``, and
+no ``Software`` text chunk (the only metadata matplotlib writes into a PNG that names its
+version); Agg writes no timestamp, so the same figure gives the same bytes on every run of the
+same matplotlib.
 """
 
 from __future__ import annotations
 
 import io
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 #: PNG resolution (dots per inch).
 DPI = 120
+#: rcParams on top of matplotlib's defaults.
+RC = {"svg.hashsalt": "dgpc", "font.family": "DejaVu Sans", "axes.unicode_minus": True}
+
+
+@contextmanager
+def style() -> Iterator[None]:
+    """Meanwhile: matplotlib's default style with :data:`RC` (figures are made and saved
+    inside it)."""
+    import matplotlib
+    import matplotlib.style
+
+    with matplotlib.style.context("default"), matplotlib.rc_context(RC):
+        yield
 
 
 def figure(width: float, height: float):
@@ -26,5 +43,5 @@ def png_bytes(fig) -> bytes:
 
     FigureCanvasAgg(fig)
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", metadata={"Software": None})
+    fig.savefig(buf, format="png", dpi=DPI, metadata={"Software": None})
     return buf.getvalue()

@@ -1,143 +1,94 @@
 """``dgpc report``: figures of an artifact and an ``index.html`` with its metrics (SPEC §2).
 
-Files written for ``-o PREFIX`` (each kind also gets ``PREFIX-index.html``):
+Files written for ``-o PREFIX`` (every kind also gets ``PREFIX-index.html``); the 3-D figures
+show the model in three framed views with a scale bar (:mod:`dgpc_cli.report.views`):
 
 * net: ``PREFIX-width.png`` (strip width), ``PREFIX-curvature.png`` (discrete Gaussian
-  curvature, red/blue/white as Fig. 17), ``PREFIX-strain.png`` when the net comes from
+  curvature, red/blue/white as Fig. 17), ``PREFIX-coverage.png`` when the net records a
+  reference mesh that is still there (``data.reference``): the net over the reference, the
+  uncovered part of the reference in orange; ``PREFIX-strain.png`` when the net comes from
   ``optimize --mode isometric`` and its input net (``inputs.net``) is still there unchanged
-  (Fig. 13), ``PREFIX-clairaut.png`` when the net records an axis in ``data.surface.axis``
-  (Fig. 11) — see :mod:`dgpc_cli.report.net`;
+  (Fig. 13: principal directions over |λ1| + |λ2|); ``PREFIX-clairaut.png`` when the net
+  records an axis in ``data.surface.axis`` (Fig. 11, the geodesics the metric checks);
+  ``PREFIX-convergence.png`` when it records a solver history (``status.steps``);
 * strips: ``PREFIX-width.png``, the planar-quad strips coloured by their width;
-* flat: ``PREFIX-overlay.png`` and ``PREFIX-strips.png``:
+* flat: ``PREFIX-overlay.png`` (every part on its class representative, one cell per class,
+  Fig. 18 bottom-right) and ``PREFIX-strips.png`` (the parts laid out like a sheet, Fig. 18
+  bottom-left);
+* mold: ``PREFIX-profile.png`` (the meridian), ``PREFIX-pairing-netK.png`` per design net (its
+  panels on the mold and on the design in one colour each, Fig. 16) and ``PREFIX-pieces.png``
+  (the mold pieces and the flat panels, Fig. 17);
+* laths: ``PREFIX-laths.png``, the two lath families of a gridshell (Fig. 14);
+* sheets: ``PREFIX-sheetNN.png`` per sheet and ``PREFIX-moldmap.png`` (with ``nest --mold``):
+  the previews ``nest`` wrote, at 100 %, with a legend of their layers.
 
-  - overlay: every part aligned on its class representative (Fig. 18 bottom-right: "Overlay of
-    all strips ... implying congruent strips"), one panel per class;
-  - strips: the parts side by side, each with its rulings (score lines) and id (Fig. 18
-    bottom-left);
-
-* mold: ``PREFIX-profile.png``, the meridian profile;
-* laths: ``PREFIX-laths.png``, the two lath families of a gridshell in 3-D (Fig. 14);
-* sheets: no new figure; the index links the sheet previews that ``nest`` wrote.
-
-Rendered with matplotlib's Agg backend, without metadata that would change between runs.
+Figures are made with matplotlib's Agg backend in its default style
+(:func:`dgpc_cli.report.render.style`); the same artifact gives the same bytes on every run.
 """
 
 from __future__ import annotations
 
 import logging
-import os
+import re
+from collections.abc import Callable
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from dgpc_cli.io.artifact import resolve_input, sha256_file
-from dgpc_cli.report.html import index_html
-from dgpc_cli.report.render import DPI, figure, png_bytes
+from dgpc_cli.report.html import Header, index_html
+from dgpc_cli.report.render import png_bytes, style
+from dgpc_cli.report.words import counted
 
-__all__ = ["DPI", "overlay_png", "report_files", "strips_png"]
+__all__ = ["report_files"]
 
 log = logging.getLogger(__name__)
 
-def _closed(ring):
-    ring = np.asarray(ring, float)
-    return np.concatenate([ring, ring[:1]])
+
+@dataclass
+class Page:
+    """What the report of one artifact shows: ``figures`` as ``(name, caption, make)`` with
+    ``make()`` returning a matplotlib Figure, the envelope's fields and a header."""
+
+    figures: list[tuple[str, str, Callable]]
+    metrics: dict
+    status: dict
+    units: str
+    header: Header
+    convergence: tuple[str, str, Callable] | None = None
+    inputs: dict = field(default_factory=dict)
 
 
-def _aligned_points(part, points):
-    al = part["alignment"]
-    R, t = np.asarray(al["matrix"], float), np.asarray(al["translation"], float)
-    return np.asarray(points, float) @ R.T + t
+def _input_notes(inputs: dict, json_path: Path) -> list[tuple[str, str, str]]:
+    out = []
+    for name in sorted(inputs):
+        record = inputs[name]
+        if not isinstance(record, dict) or "path" not in record:
+            continue
+        path = resolve_input(record, json_path)
+        if not path.is_file():
+            note = "missing"
+        elif record.get("sha256") and sha256_file(path) != record["sha256"]:
+            note = "changed since"
+        else:
+            note = "present"
+        out.append((name, record["path"], note))
+    return out
 
 
-def overlay_png(parts: list[dict], classes: list[dict], units: str) -> bytes:
-    """PNG of all parts aligned on their class representatives, one panel per class."""
-    by_id = {p["id"]: p for p in parts}
-    k = len(classes)
-    fig = figure(8.0, 2.2 * k + 0.6)
-    for row, cls in enumerate(classes):
-        ax = fig.add_subplot(k, 1, row + 1)
-        for pid in cls["members"]:
-            part = by_id[pid]
-            ax.plot(*_closed(_aligned_points(part, part["outline"])).T, lw=0.6, alpha=0.7)
-            for seg in part["score"]:
-                ax.plot(*_aligned_points(part, seg).T, lw=0.3, color="0.5", alpha=0.5)
-        ax.set_aspect("equal")
-        ax.set_title(f"{cls['id']}: {cls['quantity']} × {cls['representative']}, max error "
-                     f"{cls['max_relative_error']:.2e} of the length", fontsize=8)
-        _length_axes(ax, units)
-    fig.tight_layout()
-    return png_bytes(fig)
+def _convergence(status: dict):
+    from dgpc_cli.report.convergence import convergence_figure, has_history
 
-
-def _length_axes(ax, units: str) -> None:
-    ax.set_xlabel(f"x [{units}]", fontsize=7)
-    ax.set_ylabel(f"y [{units}]", fontsize=7)
-    ax.tick_params(labelsize=6)
-
-
-def strips_png(parts: list[dict], units: str) -> bytes:
-    """PNG of the parts side by side (as in the flat artifact's 3dm), with rulings and ids."""
-    from dgpc_cli.io.flat import side_by_side
-
-    fig = figure(8.0, min(2.0 + 0.35 * len(parts), 40.0))
-    ax = fig.add_subplot(1, 1, 1)
-    for part, shift in zip(parts, side_by_side([p["outline"] for p in parts]), strict=True):
-        outline = np.asarray(part["outline"], float)
-        ax.fill(*(outline + shift).T, facecolor="0.92", edgecolor="k", lw=0.5)
-        for seg in part["score"]:
-            ax.plot(*(np.asarray(seg, float) + shift).T, lw=0.3, color="tab:blue")
-        lx, ly = np.asarray(part["label"], float) + shift
-        ax.text(lx, ly, f"{part['id']} ({part['class']})", fontsize=5, ha="center",
-                va="center")
-    ax.set_aspect("equal")
-    _length_axes(ax, units)
-    fig.tight_layout()
-    return png_bytes(fig)
+    if not has_history(status):
+        return None
+    return ("convergence", "The solver's convergence: R and every term's residual norm per "
+                           "iteration, handle steps one after the other.",
+            lambda: convergence_figure(status, title="solver convergence"))
 
 
 # --------------------------------------------------------------------------------------------
-# every kind: (name, caption, PNG bytes) figures, then the index
-
-
-def _net_figures(json_path: Path) -> tuple[list, dict, dict, str]:
-    from dgpc_cli.io.net import read_net
-    from dgpc_cli.metrics.clairaut import clairaut_values
-    from dgpc_cli.metrics.strain import strain
-    from dgpc_cli.report.net import (
-        clairaut_png,
-        curvature_per_quad,
-        grids_png,
-        vertex_to_quad,
-        width_per_quad,
-    )
-    from dgpc_cli.stages.inspect import recorded_axis
-
-    net = read_net(json_path)
-    f, u = net.f, net.units
-    m, n = net.shape
-    figs = [
-        ("width", "Strip width per quad (mean of its two v-edges), paper §3.1.",
-         grids_png([f], [width_per_quad(f)], title=f"strip width, {m}×{n} net",
-                   label=f"strip width [{u}]")),
-        ("curvature", "Discrete Gaussian curvature K = −∂uu w / w (Jacobi equation (1)): red "
-                      "positive, blue negative, white ≈ 0 (paper Fig. 17); grey: undefined.",
-         grids_png([f], [curvature_per_quad(f)], title="discrete Gaussian curvature K",
-                   label=f"K [1/{u}²]", diverging=True)),
-    ]
-    against = _isometry_input(net, json_path)
-    if against is not None:
-        amount, summary = strain(f, against.f)
-        figs.append(("strain", "Strain |λ1| + |λ2| against the input net of the isometric "
-                               f"optimization (paper Fig. 13), max {summary['max']:.3g}.",
-                     grids_png([f], [vertex_to_quad(amount)],
-                               title="strain against the input net", label="|λ1| + |λ2|")))
-    axis = recorded_axis(net)
-    if axis is not None:
-        values = clairaut_values(f, axis)
-        figs.append(("clairaut", "Clairaut's relation (9): r cos α along each geodesic, "
-                                 "constant on a surface of revolution (paper Fig. 11).",
-                     clairaut_png(values, f, title="r cos α along the geodesics", units=u)))
-    return figs, net.metrics, net.status, u
+# nets
 
 
 def _isometry_input(net, json_path: Path):
@@ -163,73 +114,253 @@ def _isometry_input(net, json_path: Path):
     return other
 
 
-def _strips_figures(json_path: Path) -> tuple[list, dict, dict, str]:
+def _reference(net, json_path: Path):
+    """The net's recorded reference with the share of each face the net covers, or None."""
+    from dgpc_cli.metrics.coverage import covered_faces
+    from dgpc_cli.report.net import Reference
+    from dgpc_cli.stages.inspect import recorded_reference
+
+    mesh = recorded_reference(net, json_path)
+    if mesh is None:
+        return None
+    recorded = (net.metrics.get("coverage") or {}).get("area_fraction")
+    return Reference(mesh.vertices, mesh.faces, covered_faces(net.f, mesh.vertices, mesh.faces),
+                     recorded)
+
+
+def _recorded_clairaut(metrics: dict) -> dict | None:
+    """The artifact's own Clairaut metric (the figure shows its numbers), if it has one."""
+    record = metrics.get("clairaut")
+    if isinstance(record, dict) and isinstance(record.get("per_geodesic"), dict):
+        return record
+    return None
+
+
+def _net_page(json_path: Path) -> Page:
+    from dgpc_cli.io.net import read_net
+    from dgpc_cli.metrics.clairaut import clairaut, clairaut_values
+    from dgpc_cli.report import net as fig
+    from dgpc_cli.report.camera import outward_front
+    from dgpc_cli.report.clairaut import clairaut_figure
+    from dgpc_cli.report.scene import grid_quads
+    from dgpc_cli.stages.inspect import recorded_axis
+
+    net = read_net(json_path)
+    f, u = net.f, net.units
+    m, n = net.shape
+    axis = recorded_axis(net)
+    up = axis[1] if axis is not None else (0.0, 0.0, 1.0)
+    front = outward_front(grid_quads(f), up)
+    view = {"up": up, "front": front, "unit": u}
+    figs = [
+        ("width", "Strip width per quad (mean of its two v-edges), paper §3.1.",
+         lambda: fig.field_figure([f], [fig.width_per_quad(f)], label=f"strip width [{u}]",
+                                  title=f"strip width, {m}×{n} net", **view)),
+        ("curvature", "Discrete Gaussian curvature K = −∂uu w / w (Jacobi equation (1)): red "
+                      "positive, blue negative, white ≈ 0 (paper Fig. 17); grey: undefined.",
+         lambda: fig.field_figure([f], [fig.curvature_per_quad(f)], label=f"K [1/{u}²]",
+                                  title="discrete Gaussian curvature K", diverging=True,
+                                  **view)),
+    ]
+    reference = _reference(net, json_path)
+    if reference is not None:
+        share = 100 * reference.share
+        figs.append(("coverage", f"The net over its reference mesh: {share:.1f} % of the "
+                                 "reference is covered (grey), the rest (orange) is not.",
+                     lambda: fig.field_figure([f], [fig.width_per_quad(f)],
+                                              label=f"strip width [{u}]",
+                                              title=f"net over its reference ({share:.1f} % "
+                                                    "covered)", reference=reference, **view)))
+    against = _isometry_input(net, json_path)
+    if against is not None:
+        figs.append(("strain", "Strain against the input net of the isometric optimization "
+                               "(paper Fig. 13): principal directions at the interior vertices, "
+                               "as long as their eigenvalues, over the colour of |λ1| + |λ2|.",
+                     lambda: fig.strain_figure(f, against.f, title="strain against the input "
+                                                                   "net", **view)))
+    if axis is not None:
+        metric = _recorded_clairaut(net.metrics) or clairaut(f, axis)
+        figs.append(("clairaut", "Clairaut's relation (9): r cos α minus its mean along each "
+                                 "interior geodesic (the ones the metric checks), and each "
+                                 "geodesic's mean (paper Fig. 11).",
+                     lambda: clairaut_figure(clairaut_values(f, axis), f, metric, unit=u)))
+    mode = net.parameters.get("mode")
+    made = f"dgpc optimize --mode {mode}" if mode else "dgpc init"
+    header = Header(f"A net of discrete geodesic parallel coordinates, {m} × {n} vertices "
+                    f"({(m - 1) * (n - 1)} quads), made by {made}.",
+                    _input_notes(net.inputs, json_path))
+    return Page(figs, net.metrics, net.status, u, header, _convergence(net.status))
+
+
+# --------------------------------------------------------------------------------------------
+# strips, flat parts, laths
+
+
+def _strips_page(json_path: Path) -> Page:
     from dgpc_cli.io.strips import read_strips
-    from dgpc_cli.report.net import grids_png, width_per_quad
+    from dgpc_cli.report.net import field_figure, width_per_quad
 
     art = read_strips(json_path)
     grids = [np.stack([np.asarray(A, float), np.asarray(B, float)], axis=1)
              for A, B in art.geometry]
     figs = [("width", "The planar-quad strips, each quad coloured by the strip width.",
-             grids_png(grids, [width_per_quad(g) for g in grids],
-                       title=f"{len(grids)} planar-quad strips",
-                       label=f"strip width [{art.units}]"))]
-    return figs, art.metrics, art.status, art.units
+             lambda: field_figure(grids, [width_per_quad(g) for g in grids],
+                                  title=f"{len(grids)} planar-quad strips",
+                                  label=f"strip width [{art.units}]", unit=art.units))]
+    header = Header(f"{len(grids)} geodesic strips made of planar quads "
+                    "(dgpc planarize-strips).", _input_notes(art.inputs, json_path))
+    return Page(figs, art.metrics, art.status, art.units, header)
 
 
-def _flat_figures(json_path: Path) -> tuple[list, dict, dict, str]:
+def _flat_page(json_path: Path) -> Page:
     from dgpc_cli.io.flat import read_flat
+    from dgpc_cli.report.flat import layout_figure, overlay_figure
 
     flat = read_flat(json_path)
-    figs = [("overlay", "Every part aligned on its class representative (paper Fig. 18 "
-                        "bottom-right).", overlay_png(flat.parts, flat.classes, flat.units)),
-            ("strips", "The developed parts side by side with their rulings (paper Fig. 18 "
-                       "bottom-left).", strips_png(flat.parts, flat.units))]
-    return figs, flat.metrics, flat.status, flat.units
+    figs = [("overlay", "Every part aligned on its class representative, one cell per "
+                        "congruence class (paper Fig. 18 bottom-right).",
+             lambda: overlay_figure(flat.parts, flat.classes, flat.units)),
+            ("strips", "The developed parts laid out like a sheet, with their rulings (score "
+                       "lines), ids and classes (paper Fig. 18 bottom-left).",
+             lambda: layout_figure(flat.parts, flat.units))]
+    header = Header(f"{counted(len(flat.parts), 'developed part')} in "
+                    f"{counted(len(flat.classes), 'congruence class', 'congruence classes')} "
+                    "(dgpc unfold).", _input_notes(flat.inputs, json_path))
+    return Page(figs, flat.metrics, flat.status, flat.units, header)
 
 
-def _mold_figures(json_path: Path) -> tuple[list, dict, dict, str]:
-    from dgpc_cli.io.mold import read_mold
-    from dgpc_cli.report.net import profile_png
-
-    mold = read_mold(json_path)
-    figs = [("profile", f"The mold's meridian profile (r, h in {mold.units}) with the axis of "
-                        "revolution.",
-             profile_png(mold.r, mold.h, unit=mold.units, title="mold meridian profile"))]
-    return figs, mold.metrics, mold.status, mold.units
-
-
-def _sheets_links(json_path: Path, html_path: Path) -> tuple[list, dict, dict, str]:
-    from dgpc_cli.io.sheets import read_sheets
-
-    art = read_sheets(json_path)
-    links = []
-    folder = html_path.resolve().parent
-    for i, sheet in enumerate(art.data["sheets"]):
-        target = art.file(sheet["png"])
-        href = Path(os.path.relpath(target.resolve(), folder)).as_posix()
-        links.append((href, f"Sheet {i + 1} of {len(art.data['sheets'])} (preview written by "
-                            "dgpc nest)."))
-    return links, art.metrics, art.status, art.data["units"]
-
-
-def _laths_figures(json_path: Path) -> tuple[list, dict, dict, str]:
+def _laths_page(json_path: Path) -> Page:
     from dgpc_cli.io.laths import read_laths
-    from dgpc_cli.report.net import polylines_png
+    from dgpc_cli.report.net import laths_figure
 
     art = read_laths(json_path)
     a, b = art.family("A"), art.family("B")
-    title = (f"{len(a)} + {len(b)} laths, {art.data['crossings']} crossings (lengths in "
-             f"{art.data['units']})")
+    units = art.data["units"]
+    title = f"{len(a)} + {len(b)} laths, {art.data['crossings']} crossings"
     figs = [("laths", "The two lath families (the u-line geodesics of the two nets, paper "
                       "Fig. 14); the cut list is beside the artifact.",
-             polylines_png([a, b], [f"family A ({len(a)})", f"family B ({len(b)})"],
-                           title=title))]
-    return figs, art.metrics, art.status, art.data["units"]
+             lambda: laths_figure([a, b], [f"family A ({len(a)})", f"family B ({len(b)})"],
+                                  title=title, unit=units))]
+    header = Header(f"The laths of a gridshell: {len(a)} + {len(b)} geodesics of two nets, "
+                    f"{art.data['crossings']} crossings (dgpc laths).",
+                    _input_notes(art.inputs, json_path))
+    return Page(figs, art.metrics, art.status, units, header)
 
 
-FIGURES = {"net": _net_figures, "strips": _strips_figures, "flat": _flat_figures,
-           "mold": _mold_figures, "laths": _laths_figures}
+# --------------------------------------------------------------------------------------------
+# molds and sheets
+
+
+def _design_nets(mold, json_path: Path) -> list[np.ndarray]:
+    """The design nets of a mold, from its ``panels_obj`` (vertices of every net in order)."""
+    from dgpc_cli.io.obj import parse_net_obj
+
+    shapes = [tuple(x["shape"]) for x in mold.data["nets"]]
+    path = resolve_input(mold.data["files"]["panels_obj"], json_path)
+    total = sum(m * n for m, n in shapes)
+    vertices = parse_net_obj(path.read_bytes(), total, 1, path).reshape(-1, 3)
+    out, start = [], 0
+    for m, n in shapes:
+        out.append(vertices[start:start + m * n].reshape(m, n, 3))
+        start += m * n
+    return out
+
+
+def _mold_page(json_path: Path) -> Page:
+    from dgpc_cli.io.mold import read_mold
+    from dgpc_cli.report.mold import pairing_figure, pieces_figure, profile_figure
+
+    mold = read_mold(json_path)
+    u, data = mold.units, mold.data
+    names = [mold.inputs.get(x["input"], {}).get("path", x["input"]) for x in data["nets"]]
+    nets = _design_nets(mold, json_path)
+    panels = data["panels"]
+    figs = [("profile", f"The mold's meridian profile (r, h in {u}) with the axis of "
+                        "revolution.",
+             lambda: profile_figure(mold.r, mold.h, unit=u, title="mold meridian profile"))]
+    for k, f in enumerate(nets):
+        mine = [p for p in panels if p["net"] == k]
+        figs.append((f"pairing-net{k + 1}",
+                     f"Net {k + 1} ({names[k]}): each panel on the mold (left) and on the "
+                     "design (right) in one colour, labelled with its id; hatched: flat panels "
+                     "(paper Fig. 16).",
+                     lambda f=f, mine=mine, k=k: pairing_figure(
+                         f, mine, mold.r, mold.h, unit=u,
+                         title=f"net {k + 1} ({names[k]}): {len(mine)} panels on the mold and "
+                               "on the design")))
+    flat = sum(p["flat"] for p in panels)
+    figs.append(("pieces", "The mold sector cut into its pieces and where their panels are on "
+                           "the design; flat panels (K ≈ 0) need no mold (paper Fig. 17).",
+                 lambda: pieces_figure(nets, panels, data["pieces"], mold.r, mold.h,
+                                       data["sector"]["angle_deg"], unit=u,
+                                       names=[f"net {k + 1}" for k in range(len(nets))],
+                                       title=f"{counted(len(data['pieces']), 'mold piece')} "
+                                             f"for {counted(len(panels) - flat, 'curved panel')}"
+                                             f"; {counted(flat, 'flat panel')} "
+                                             f"need{'s' if flat == 1 else ''} none")))
+    header = Header(f"A mold: the surface of revolution of {counted(len(nets), 'design net')}, "
+                    f"{counted(len(panels), 'panel')} ({flat} flat) on "
+                    f"{counted(len(data['pieces']), 'mold piece')} (dgpc extract-mold).",
+                    _input_notes(mold.inputs, json_path))
+    return Page(figs, mold.metrics, mold.status, u, header)
+
+
+def _layer_legend(layers: dict, what: dict) -> list[tuple[str, tuple, str]]:
+    """``(name, rgb, what)`` per DXF layer of ``what``, in the layers' ACI colours (ACI 7,
+    white on black, is drawn black on the white previews)."""
+    from ezdxf.colors import aci2rgb
+
+    out = []
+    for name, text in what.items():
+        aci = layers[name].color
+        rgb = (0.0, 0.0, 0.0) if aci == 7 else tuple(c / 255 for c in aci2rgb(aci))
+        out.append((name, rgb, text))
+    return out
+
+
+#: What each layer of a cut sheet and of the mold map holds.
+SHEET_LEGEND = {"CUT": "outlines, cut", "SCORE": "rulings, score or bend",
+                "LABEL": "part ids", "SHEET": "sheet border, not cut"}
+MAP_LEGEND = {"PROFILE": "meridian profile", "AXIS": "axis", "SECTOR": "developed sector",
+              "PIECES": "mold pieces", "PANELS": "where panels are pressed",
+              "LABEL": "labels", "TABLE": "table"}
+
+
+def _sheets_page(json_path: Path) -> Page:
+    from dgpc_cli.io.dxf import SHEET_LAYERS
+    from dgpc_cli.io.sheets import read_sheets
+    from dgpc_cli.nesting.drawing import MAP_LAYERS
+    from dgpc_cli.report.sheets import preview_figure
+
+    art = read_sheets(json_path)
+    data = art.data
+    W, H, unit = data["sheet"]["width"], data["sheet"]["height"], data["units"]
+    count = len(data["sheets"])
+    legend = _layer_legend(SHEET_LAYERS, SHEET_LEGEND)
+    figs = []
+    for i, sheet in enumerate(data["sheets"]):
+        png = art.file(sheet["png"]).read_bytes()
+        title = (f"{sheet['id']} ({i + 1} of {count}), {W:g} × {H:g} {unit}: "
+                 f"{counted(len(sheet['parts']), 'part')}, "
+                 f"{100 * sheet['utilization']:.1f} % used")
+        figs.append((f"sheet{i + 1:02d}", f"Sheet {sheet['id']}: the cut sheet's preview "
+                                          "(written by dgpc nest) with its layers.",
+                     lambda png=png, title=title: preview_figure(png, legend, title=title)))
+    if "moldmap_png" in data["files"]:
+        png = art.file("moldmap_png").read_bytes()
+        figs.append(("moldmap", "The panel-to-mold map sheet (written by dgpc nest --mold) "
+                                "with its layers.",
+                     lambda: preview_figure(png, _layer_legend(MAP_LAYERS, MAP_LEGEND),
+                                            title="panel-to-mold map")))
+    header = Header(f"{counted(len(data['placements']), 'part')} nested on "
+                    f"{counted(count, 'sheet')} of {W:g} × {H:g} {unit}, "
+                    f"{100 * art.metrics.get('utilization', 0.0):.1f} % used (dgpc nest).",
+                    _input_notes(art.inputs, json_path))
+    return Page(figs, art.metrics, art.status, data["units"], header)
+
+
+PAGES = {"net": _net_page, "strips": _strips_page, "flat": _flat_page, "mold": _mold_page,
+         "laths": _laths_page, "sheets": _sheets_page}
 
 
 def _prefix_text(prefix: Path) -> str:
@@ -240,22 +371,41 @@ def _prefix_text(prefix: Path) -> str:
     return text
 
 
+def previous_report_files(prefix: Path) -> list[Path]:
+    """The figures that an earlier report of ``-o PREFIX`` wrote: the ``PREFIX-*.png`` its
+    ``PREFIX-index.html`` links (in its folder only; none when there is no such index), for
+    ``--force`` to remove those the new report does not write."""
+    html_path = Path(_prefix_text(prefix) + "-index.html")
+    try:
+        html = html_path.read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return []
+    start = html_path.name[: -len("index.html")]
+    names = set(re.findall(r'src="([^"/\\]+\.png)"', html))
+    return [html_path.parent / n for n in sorted(names) if n.startswith(start)]
+
+
 def report_files(json_path: Path, kind: str, prefix: Path) -> dict[Path, bytes]:
     """Every file of the report of the ``kind`` artifact ``json_path`` for ``-o PREFIX``:
     ``PREFIX-<figure>.png`` and last ``PREFIX-index.html`` (nothing written)."""
     text = _prefix_text(prefix)
     html_path = Path(text + "-index.html")
+    page = PAGES[kind](json_path)
     files: dict[Path, bytes] = {}
-    if kind == "sheets":
-        links, metrics, status, units = _sheets_links(json_path, html_path)
-    else:
-        figs, metrics, status, units = FIGURES[kind](json_path)
-        links = []
-        for name, caption, data in figs:
+    links = []
+    convergence = None
+    with style():
+        for name, caption, make in page.figures:
             path = Path(f"{text}-{name}.png")
-            files[path] = data
+            files[path] = png_bytes(make())
             links.append((path.name, caption))
+        if page.convergence is not None:
+            name, caption, make = page.convergence
+            path = Path(f"{text}-{name}.png")
+            files[path] = png_bytes(make())
+            convergence = (path.name, caption)
     files[html_path] = index_html(title=f"dgpc report: {json_path.name}", kind=kind,
-                                  source=json_path.name, figures=links, metrics=metrics,
-                                  status=status, units=units)
+                                  source=json_path.name, header=page.header, figures=links,
+                                  metrics=page.metrics, status=page.status, units=page.units,
+                                  convergence=convergence)
     return files

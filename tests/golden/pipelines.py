@@ -54,6 +54,19 @@ SOFT_REL = {
 SOFT_COORD = {"felt-developable": 1e-7, "gridshell": 1e-2}
 
 
+#: Upper bounds of the figures of a fit whose solution is a family rather than one net: the
+#: twisted net on the bowling pin may turn about the pin's axis and slide along its geodesics
+#: while staying a gpc net on it, and the last bits of its start pick the member (1e-15
+#: perturbations of the 21×11 start moved the fitted vertices by 3–8 % of the diagonal, the
+#: largest relative Clairaut MAD 2.4e-3–4.8e-3, Hausdorff 0.8e-3–2.1e-3 of the diagonal, R
+#: 4e-13–2.6e-9). What the pipeline verifies is bounded instead: R within its --tol, Clairaut's
+#: r cos α constant within 1 %, the net on the pin; its coordinates are not compared.
+BOUNDS = {
+    "bowling-pin-clairaut": {"R": 1e-8, "clairaut_max_relative_mad": 1e-2,
+                             "hausdorff_over_diagonal": 5e-3},
+}
+
+
 def rel_tol(name: str, key: str) -> float:
     """Relative tolerance of metric ``key`` of pipeline ``name``."""
     return SOFT_REL.get(name, {}).get(key, REL)
@@ -68,7 +81,7 @@ SIZES = {
     "gehry-facade": (9, 7),
     "timber-cladding": (9, 7),
     "felt-developable": (9, 7),
-    "bowling-pin-clairaut": (15, 9),
+    "bowling-pin-clairaut": (21, 11),
     "gridshell": (15, 11),
     "gallery": (9, 7),
 }
@@ -120,7 +133,6 @@ METRICS = {
     "bowling-pin-clairaut": {
         "R": ("pin", "R"),
         "clairaut_max_relative_mad": ("pin", "clairaut.max_relative_mad"),
-        "clairaut_mean_abs": ("pin", "clairaut.mean_abs"),
         "hausdorff_over_diagonal": ("pin", "hausdorff.net_to_reference_max/hausdorff.diagonal"),
     },
     "gallery": {
@@ -157,7 +169,7 @@ NETS = {
     "gehry-facade": [f"facade-{k}" for k in range(1, 5)],
     "timber-cladding": ["wall"],
     "felt-developable": ["felt"],
-    "bowling-pin-clairaut": ["pin"],
+    "bowling-pin-clairaut": [],             # a family of fits: see BOUNDS
     "gridshell": ["a", "b"],
     "gallery": [f"{s}-net" for s in GALLERY],
 }
@@ -221,7 +233,9 @@ def collect(name: str, d: Path) -> dict:
     return {
         "pipeline": name,
         "size": list(SIZES[name]),
-        "tolerances": {"metrics_rel": {k: rel_tol(name, k) for k in METRICS[name]},
+        "tolerances": {"metrics_rel": {k: rel_tol(name, k) for k in METRICS[name]
+                                       if k not in BOUNDS.get(name, {})},
+                       "metrics_upper_bound": BOUNDS.get(name, {}),
                        "metrics_floor": FLOOR,
                        "coordinates_rel_to_bbox_diagonal": coord_tol(name), "counts": "exact",
                        "dxf": "exact"},

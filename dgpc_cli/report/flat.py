@@ -1,0 +1,204 @@
+"""Figures of the developed parts (paper Fig. 18, bottom): the overlay per congruence class and
+the parts laid out like sheets, both on one page with labels legible at 100 %.
+
+Every drawing turns a part (or a class) so that its longest extent runs across the page (the
+principal axis of its outline); the parts of a flat artifact are long strips, and a strip laid
+across needs the least height.
+
+* :func:`overlay_figure`: one cell per congruence class in a grid chosen to fit
+  :data:`PAGE` (the cells as large as the page allows); in each cell every member of the class
+  moved onto the representative (its recorded alignment), outlines and rulings, the title naming
+  the class, its quantity, representative and largest error.
+* :func:`layout_figure`: the parts in rows like a sheet (shelf layout in id order, the row width
+  chosen so that the layout's shape is the page's), each outline with its rulings and its id and
+  class at its label point, and a scale bar.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .render import figure
+from .views import nice_length
+from .words import counted
+
+__all__ = ["PAGE", "layout_figure", "overlay_figure", "principal_rotation"]
+
+#: Page width and largest page height (inches): a portrait sheet of paper.
+PAGE = (8.0, 10.5)
+#: Font sizes (points): titles, labels.
+TITLE_PT, LABEL_PT, SMALL_PT = 11, 8, 7
+#: Colours: outline (cut), rulings (score), fill.
+CUT, SCORE, FILL = (0.8, 0.0, 0.0), (0.0, 0.0, 0.85), (0.95, 0.95, 0.95)
+#: Gap between parts in the layout, as a fraction of the tallest part.
+GAP = 0.35
+
+
+def principal_rotation(points: np.ndarray) -> np.ndarray:
+    """The 2×2 rotation that turns the principal axis of ``points (k, 2)`` onto x (the sign
+    fixed so that the result is deterministic)."""
+    p = np.asarray(points, float)
+    q = p - p.mean(axis=0)
+    _, vecs = np.linalg.eigh(q.T @ q)
+    axis = vecs[:, 1]
+    if axis[int(np.argmax(np.abs(axis)))] < 0:
+        axis = -axis
+    c, s = axis
+    return np.array([[c, s], [-s, c]])
+
+
+def _closed(ring: np.ndarray) -> np.ndarray:
+    return np.concatenate([ring, ring[:1]])
+
+
+def _aligned(part: dict, points) -> np.ndarray:
+    al = part["alignment"]
+    R, t = np.asarray(al["matrix"], float), np.asarray(al["translation"], float)
+    return np.asarray(points, float) @ R.T + t
+
+
+def _grid_shape(count: int, aspect: float) -> tuple[int, int, float]:
+    """``(columns, rows, cell width in inches)`` of the grid of ``count`` cells of drawing
+    ``aspect`` (width / height) plus a title line, largest cells that fit :data:`PAGE`."""
+    best = (1, count, 0.0)
+    title = 0.32
+    for cols in range(1, count + 1):
+        rows = math.ceil(count / cols)
+        width = PAGE[0] / cols
+        height = width / aspect + title
+        if rows * height > PAGE[1] - 0.6:
+            width = ((PAGE[1] - 0.6) / rows - title) * aspect
+            if width <= 0:
+                continue
+        if width > best[2]:
+            best = (cols, rows, width)
+    return best
+
+
+def overlay_figure(parts: list[dict], classes: list[dict], units: str):
+    """All parts aligned on their class representatives, one cell (axes gid ``class-<id>``)
+    per congruence class."""
+    from matplotlib.lines import Line2D
+
+    by_id = {p["id"]: p for p in parts}
+    drawings = []
+    for cls in classes:
+        rep = by_id[cls["representative"]]
+        R = principal_rotation(np.asarray(rep["outline"], float))
+        members = [by_id[pid] for pid in cls["members"]]
+        outlines = [_aligned(p, p["outline"]) @ R.T for p in members]
+        scores = [[_aligned(p, seg) @ R.T for seg in p["score"]] for p in members]
+        drawings.append((cls, outlines, scores))
+    extents = [np.ptp(np.concatenate(o), axis=0) for _, o, _ in drawings]
+    aspect = max(max(e[0] / max(e[1], 1e-12 * e[0]) for e in extents), 1.0)
+    cols, rows, width = _grid_shape(len(classes), aspect)
+    cell_h = width / aspect + 0.32
+    fig = figure(PAGE[0], min(PAGE[1], rows * cell_h + 0.9))
+    W, H = fig.get_size_inches()
+    span = max(float(e[0]) for e in extents)                 # one scale for every class
+    for k, (cls, outlines, scores) in enumerate(drawings):
+        r, c = divmod(k, cols)
+        left = (c * width + 0.05) / W
+        bottom = (H - 0.55 - (r + 1) * cell_h + 0.04) / H
+        ax = fig.add_axes((left, bottom, (width - 0.1) / W, (cell_h - 0.36) / H))
+        ax.set_gid(f"class-{cls['id']}")
+        for outline, segs in zip(outlines, scores, strict=True):
+            ax.plot(*_closed(outline).T, lw=0.7, color=CUT, alpha=0.6)
+            for seg in segs:
+                ax.plot(*seg.T, lw=0.4, color=SCORE, alpha=0.4)
+        allp = np.concatenate(outlines)
+        mid = 0.5 * (allp.min(axis=0) + allp.max(axis=0))
+        half_w = 0.52 * span
+        half_h = half_w * (cell_h - 0.36) / (width - 0.1)
+        ax.set_xlim(mid[0] - half_w, mid[0] + half_w)
+        ax.set_ylim(mid[1] - half_h, mid[1] + half_h)
+        ax.set_aspect("equal", adjustable="box")
+        ax.set_axis_off()
+        ax.set_title(f"{cls['id']}: {cls['quantity']} × {cls['representative']}, "
+                     f"error ≤ {cls['max_relative_error']:.1e}", fontsize=LABEL_PT, pad=2)
+    fig.suptitle(f"{counted(len(parts), 'part')} in "
+                 f"{counted(len(classes), 'congruence class', 'congruence classes')}, each "
+                 "overlaid on "
+                 f"its representative (one scale, length of the longest "
+                 f"{span:.4g} {units})", fontsize=TITLE_PT - 1, y=0.995)
+    fig.legend(handles=[Line2D([], [], color=CUT, lw=1, label="outlines (cut)"),
+                        Line2D([], [], color=SCORE, lw=1, label="rulings (score)")],
+               loc="upper right", bbox_to_anchor=(0.995, 1.0 - 0.3 / H), ncol=2,
+               fontsize=SMALL_PT, frameon=False)
+    return fig
+
+
+def _shelves(sizes: np.ndarray, width: float, gap: float) -> tuple[np.ndarray, float, float]:
+    """Lower-left corners ``(k, 2)`` of boxes ``sizes (k, 2)`` in rows no wider than
+    ``width`` (in the given order, each row as tall as its tallest box), the layout's width
+    and height."""
+    corners = np.zeros_like(sizes)
+    x = y = row_h = used = 0.0
+    for i, (w, h) in enumerate(sizes):
+        if x > 0 and x + w > width:
+            y += row_h + gap
+            x = row_h = 0.0
+        corners[i] = (x, y)
+        x += w + gap
+        used = max(used, x - gap)
+        row_h = max(row_h, h)
+    return corners, used, y + row_h
+
+
+def layout_figure(parts: list[dict], units: str):
+    """The parts in rows like a sheet (:func:`_shelves`), each turned across the page, with
+    rulings, id and class (texts of gid ``part-label:<id>``)."""
+    from matplotlib.lines import Line2D
+
+    turned = []
+    for p in parts:
+        outline = np.asarray(p["outline"], float)
+        R = principal_rotation(outline)
+        o = outline @ R.T
+        lo = o.min(axis=0)
+        turned.append((p, o - lo, [np.asarray(s, float) @ R.T - lo for s in p["score"]],
+                       np.asarray(p["label"], float) @ R.T - lo))
+    sizes = np.array([np.ptp(o, axis=0) for _, o, _, _ in turned])
+    order = sorted(range(len(parts)), key=lambda i: parts[i]["id"])
+    gap = GAP * float(sizes[:, 1].max())
+    target = PAGE[0] / (PAGE[1] - 1.0)
+    best = None
+    for width in np.unique(np.concatenate([sizes[:, 0], np.cumsum(sizes[order, 0])])):
+        if width < sizes[:, 0].max():
+            continue
+        corners, w, h = _shelves(sizes[order], float(width), gap)
+        score = abs(math.log((w / h) / target))
+        if best is None or score < best[0] - 1e-12:
+            best = (score, corners, w, h)
+    _, corners, w, h = best
+    fig_h = min(PAGE[1], max(3.0, PAGE[0] * h / w + 1.0))
+    fig = figure(PAGE[0], fig_h)
+    ax = fig.add_axes((0.02, 0.02, 0.96, 1.0 - 0.9 / fig_h))
+    ax.set_gid("layout")
+    for (p, o, segs, label), corner in zip([turned[i] for i in order], corners, strict=True):
+        ax.fill(*(o + corner).T, facecolor=FILL, edgecolor=CUT, lw=0.6)
+        for seg in segs:
+            ax.plot(*(seg + corner).T, lw=0.35, color=SCORE)
+        lx, ly = label + corner
+        ax.text(lx, ly, f"{p['id']} ({p['class']})", fontsize=LABEL_PT, ha="center",
+                va="center", gid=f"part-label:{p['id']}",
+                bbox={"boxstyle": "square,pad=0.1", "facecolor": FILL, "edgecolor": "none",
+                      "alpha": 0.8})
+    ax.set_xlim(-gap, w + gap)
+    ax.set_ylim(h + gap, -gap)                           # first row on top
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_axis_off()
+    bar = nice_length(w / 4)
+    ax.plot([0, bar], [h + 0.6 * gap] * 2, color="k", lw=2.5, solid_capstyle="butt",
+            clip_on=False, gid="scale-bar")
+    ax.text(0.5 * bar, h + 0.75 * gap, f"{bar:g} {units}", ha="center", va="top",
+            fontsize=LABEL_PT)
+    fig.suptitle(f"{len(parts)} developed parts laid out like a sheet (in id order), "
+                 f"with rulings, id and class", fontsize=TITLE_PT - 1, y=0.995)
+    fig.legend(handles=[Line2D([], [], color=CUT, lw=1, label="outline (cut)"),
+                        Line2D([], [], color=SCORE, lw=1, label="ruling (score)")],
+               loc="upper right", bbox_to_anchor=(0.995, 1.0 - 0.3 / fig_h), ncol=2,
+               fontsize=SMALL_PT, frameon=False)
+    return fig

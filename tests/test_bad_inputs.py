@@ -1,0 +1,319 @@
+"""Bad inputs of every kind (issue 16): each gives exactly one line on stderr naming the option
+or the file and field, the exit code of SPEC §2, and leaves every folder as it was."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import shutil
+
+import click
+import numpy as np
+import pytest
+from cli_helpers import dgpc
+
+from dgpc_cli.cli.finite_float import FiniteFloat
+from dgpc_cli.cli.main import COMMANDS, cli
+from dgpc_cli.io.net import NetArtifact, write_net
+
+
+@pytest.fixture(scope="module")
+def sample(tmp_path_factory):
+    """A small full-ring catenoid net through the stages: net, strips, flat, mold."""
+    d = tmp_path_factory.mktemp("bad-inputs")
+    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 9, "--cols", 7,
+         "--span", 360, "-o", d / "cat")
+    dgpc("planarize-strips", d / "cat", "-o", d / "strips")
+    dgpc("unfold", d / "strips", "-o", d / "flat")
+    dgpc("extract-mold", d / "cat", "-o", d / "mold")
+    dgpc("nest", d / "flat", "--sheet", "2500x1250", "--scale", 100, "-o", d / "sheets")
+    u, v = np.meshgrid(np.linspace(0, 4, 6), np.linspace(0, 4, 5), indexing="ij")
+    for name, (x, y) in (("la", (v, u)), ("lb", (u, v))):  # two crossing families
+        z = 0.1 * np.sin(y) * np.cos(x)
+        write_net(d / name, NetArtifact(f=np.stack([x, y, z], axis=-1)))
+    dgpc("laths", d / "la", d / "lb", "-o", d / "shell")
+    return d
+
+
+def snapshot(*folders) -> dict:
+    """sha256 of every file under ``folders``, by path."""
+    return {p: hashlib.sha256(p.read_bytes()).hexdigest()
+            for folder in folders for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def assert_one_line(result, code, *words):
+    """Exit ``code``, stderr one line starting with ``Error:`` and naming ``words``."""
+    assert result.exit_code == code, (result.exit_code, result.stderr)
+    lines = result.stderr.splitlines()
+    assert len(lines) == 1, result.stderr
+    assert lines[0].startswith("Error: ") and "internal error" not in lines[0], lines[0]
+    for w in words:
+        assert w in lines[0], (w, lines[0])
+
+
+def run_bad(folders, args, code, *words):
+    """Run ``dgpc ARGS`` expecting a one-line error; no file under ``folders`` changes."""
+    before = snapshot(*folders)
+    result = dgpc(*args, expect=None)
+    assert_one_line(result, code, *words)
+    assert snapshot(*folders) == before
+    return result
+
+
+def copy_artifact(src_json, dst_folder, name, edit=None):
+    """Copy the artifact of ``src_json`` (its JSON and every file beside it of the same stem)
+    to ``dst_folder/name``; ``edit(doc)`` changes the JSON (written back with Python's json,
+    which writes NaN and Infinity)."""
+    stem = src_json.name[: -len(".json")]
+    for p in src_json.parent.glob(f"{stem}.*"):
+        shutil.copy(p, dst_folder / (name + p.name[len(stem):]))
+    doc = json.loads(src_json.read_text())
+    doc["data"]["obj"] = f"{name}.obj"
+    for record in doc["data"].get("files", {}).values():
+        record["path"] = name + record["path"][len(stem):]
+    if "cut_list" in doc["data"]:
+        doc["data"]["cut_list"] = name + doc["data"]["cut_list"][len(stem):]
+    if edit is not None:
+        edit(doc)
+    (dst_folder / f"{name}.json").write_text(json.dumps(doc))
+    return dst_folder / name
+
+
+# -- items 1 and 2: no NaN or inf reaches a check or a cut file ---------------------------------
+
+def test_every_float_option_is_a_finite_float():
+    """Every float option of every command has the type that refuses NaN and inf."""
+    ctx = click.Context(cli)
+    for name in COMMANDS:
+        for param in cli.get_command(ctx, name).params:
+            if isinstance(param.type, click.types.FloatParamType):
+                assert isinstance(param.type, FiniteFloat), (name, param.name)
+
+
+FLOAT_OPTIONS = [
+    (["init", "--surface", "revolution", "--profile", "catenoid"], "--twist"),
+    (["init", "--surface", "revolution", "--profile", "catenoid"], "--span"),
+    (["init", "--surface", "revolution", "--profile", "catenoid"], "--spacing"),
+    (["init", "--surface", "revolution", "--profile", "catenoid"], "--extend"),
+    (["optimize", "{d}/cat", "--mode", "revolution"], "--tol"),
+    (["optimize", "{d}/cat", "--mode", "isometric"], "--max-strain"),
+    (["optimize", "{d}/cat", "--mode", "isometric"], "--gpc-tol"),
+    (["extract-mold", "{d}/cat"], "--tol"),
+    (["extract-mold", "{d}/cat"], "--flat-tol"),
+    (["extract-mold", "{d}/cat"], "--mold-max-length"),
+    (["extract-mold", "{d}/cat"], "--lambda"),
+    (["planarize-strips", "{d}/cat"], "--flat-angle"),
+    (["unfold", "{d}/strips"], "--congruence-tol"),
+    (["unfold", "{d}/strips"], "--stock-length"),
+    (["unfold", "{d}/strips"], "--stagger"),
+    (["nest", "{d}/flat", "--sheet", "700x500"], "--margin"),
+    (["nest", "{d}/flat", "--sheet", "700x500"], "--spacing"),
+    (["nest", "{d}/flat", "--sheet", "700x500"], "--scale"),
+    (["nest", "{d}/flat", "--sheet", "700x500"], "--time-limit"),
+    (["laths", "{d}/cat", "{d}/cat"], "--gap"),
+]
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "-inf", "NaN", "1e999"])
+@pytest.mark.parametrize("args, option", FLOAT_OPTIONS,
+                         ids=[f"{a[0]}{o}" for a, o in FLOAT_OPTIONS])
+def test_non_finite_option_is_a_usage_error(sample, tmp_path, args, option, value):
+    args = [a.format(d=sample) for a in args]
+    run_bad([sample, tmp_path], [*args, option, value, "-o", tmp_path / "out"], 2,
+            f"'{option}'", "not a finite number")
+
+
+@pytest.mark.parametrize("value, what", [(float("nan"), "NaN"), (1e999, "inf"),
+                                         (-1e999, "-inf")])
+def test_non_finite_mold_profile_reaches_no_cut_file(sample, tmp_path, value, what):
+    """data.profile.r[1] = NaN (or 1e999, which Python's json reads as inf) in a mold: nest
+    --mold refuses it before nesting, naming the file and the field."""
+    mold = copy_artifact(sample / "mold.json", tmp_path, "bad",
+                         lambda d: d["data"]["profile"]["r"].__setitem__(1, value))
+    text = (tmp_path / "bad.json").read_text()
+    if what != "NaN":  # json.dumps writes Infinity; write the number as a mold shop might
+        (tmp_path / "bad.json").write_text(text.replace("Infinity", "1e999"))
+    run_bad([sample, tmp_path], ["nest", sample / "flat", "--mold", mold, "--sheet", "700x500",
+                                 "--scale", 100, "-o", tmp_path / "sheets"], 1,
+            "bad.json", "data.profile.r[1]", what)
+
+
+@pytest.mark.parametrize("command, kind, edit, field", [
+    (["nest", "{a}", "--sheet", "700x500", "--scale", 100], "flat",
+     lambda d: d["data"]["parts"][0]["geodesics"][0][1].__setitem__(0, float("nan")),
+     "data.parts[0].geodesics[0][1][0]"),
+    (["planarize-strips", "{a}"], "cat",
+     lambda d: d["data"].__setitem__("extra", [1, 2, float("-inf")]), "data.extra[2]"),
+    (["inspect", "{a}"], "strips",
+     lambda d: d["metrics"].__setitem__("huge", 10 ** 400), "metrics.huge"),
+])
+def test_non_finite_number_in_any_artifact(sample, tmp_path, command, kind, edit, field):
+    bad = copy_artifact(sample / f"{kind}.json", tmp_path, "bad", edit)
+    args = [str(a).format(a=bad) for a in command]
+    out = [] if command[0] == "inspect" else ["-o", tmp_path / "out"]
+    result = run_bad([sample, tmp_path], [*args, *out], 1, "bad.json", field)
+    assert result.stdout == ""
+
+
+# -- item 3: --force leaves no file of the previous output behind ------------------------------
+
+def test_force_removes_the_sheets_of_a_previous_longer_layout(sample, tmp_path):
+    out = tmp_path / "sh"
+    dgpc("nest", sample / "flat", "--sheet", "700x500", "--scale", 100, "-o", out)
+    many = sorted(p.name for p in tmp_path.glob("sh.sheet*"))
+    dgpc("nest", sample / "flat", "--sheet", "2500x1250", "--scale", 100, "-o", out, "--force")
+    doc = json.loads((tmp_path / "sh.json").read_text())
+    listed = {r["path"] for r in doc["data"]["files"].values()} | {doc["data"]["obj"]}
+    assert len(many) > 3 * doc["data"]["sheet_count"] > 0
+    assert {p.name for p in tmp_path.iterdir()} == listed | {"sh.json"}
+    assert not list(tmp_path.glob(".*"))
+
+
+def test_force_removes_the_figures_of_a_previous_report(sample, tmp_path):
+    user_file = tmp_path / "r-notes.png"            # not the report's: never removed
+    user_file.write_bytes(b"mine")
+    first = dgpc("report", sample / "cat", "-o", tmp_path / "r").stdout.split()
+    second = dgpc("report", sample / "mold", "-o", tmp_path / "r", "--force").stdout.split()
+    assert set(first) - set(second)
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        [user_file.name] + [p.rsplit("/", 1)[-1] for p in second])
+
+
+def test_force_keeps_files_an_artifact_does_not_own(sample, tmp_path):
+    """Paths in the previous JSON that lead out of its folder or to another stem are never
+    removed."""
+    dgpc("unfold", sample / "strips", "-o", tmp_path / "f")
+    other = tmp_path / "other.txt"
+    other.write_text("keep")
+    doc = json.loads((tmp_path / "f.json").read_text())
+    doc["data"]["files"]["parts_csv"]["path"] = "other.txt"
+    doc["data"]["files"]["evil"] = {"path": f"../{tmp_path.name}/f.keep", "sha256": "0" * 64}
+    (tmp_path / "f.keep").write_text("keep")
+    (tmp_path / "f.json").write_text(json.dumps(doc))
+    dgpc("unfold", sample / "strips", "-o", tmp_path / "f", "--force")
+    assert other.read_text() == "keep" and (tmp_path / "f.keep").read_text() == "keep"
+
+
+# -- item 10: paths -----------------------------------------------------------------------------
+
+COMMAND_LINES = {
+    "init": ["init", "--surface", "revolution", "--profile", "catenoid", "--rows", 5,
+             "--cols", 5],
+    "optimize": ["optimize", "{d}/cat", "--mode", "revolution"],
+    "extract-mold": ["extract-mold", "{d}/cat"],
+    "planarize-strips": ["planarize-strips", "{d}/cat"],
+    "unfold": ["unfold", "{d}/strips"],
+    "nest": ["nest", "{d}/flat", "--sheet", "700x500"],
+    "report": ["report", "{d}/cat"],
+    "laths": ["laths", "{d}/cat", "{d}/cat"],
+    "batch": ["batch", "{d}/project.toml"],
+}
+
+
+def test_every_command_with_an_output_is_listed():
+    ctx = click.Context(cli)
+    with_output = {name for name in COMMANDS
+                   if any("-o" in p.opts for p in cli.get_command(ctx, name).params)}
+    assert with_output == set(COMMAND_LINES)
+
+
+@pytest.mark.parametrize("output", ["", " ", ".", "..", "sub/", "{t}/"])
+@pytest.mark.parametrize("command", sorted(COMMAND_LINES))
+def test_output_without_a_file_name_is_a_usage_error(sample, tmp_path, monkeypatch, command,
+                                                     output):
+    if command == "batch" and output not in ("", " "):
+        return  # batch writes into a folder: only the empty path is no folder
+    (sample / "project.toml").touch()
+    monkeypatch.chdir(tmp_path)
+    args = [str(a).format(d=sample) for a in COMMAND_LINES[command]]
+    run_bad([sample, tmp_path], [*args, "-o", output.format(t=tmp_path)], 2, "'--output'")
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("args", [
+    ["init", "{x}.obj", "--method", "project", "--direction", "0,0,1"],
+    ["init", "{x}.stl", "--method", "geodesic"],
+    ["init", "--from-quads", "{x}.obj"],
+    ["init", "--surface", "revolution", "--profile", "{x}.csv", "--rows", 5, "--cols", 5],
+    ["optimize", "{d}/cat", "--mode", "fit", "--reference", "{x}.obj"],
+    ["optimize", "{d}/cat", "--mode", "isometric", "--handles", "{x}.json"],
+    ["optimize", "{x}", "--mode", "revolution"],
+    ["extract-mold", "{x}"],
+    ["planarize-strips", "{x}"],
+    ["unfold", "{x}"],
+    ["nest", "{x}", "--sheet", "700x500"],
+    ["nest", "{d}/flat", "--mold", "{x}", "--sheet", "700x500"],
+    ["laths", "{d}/cat", "{x}"],
+    ["report", "{x}"],
+    ["inspect", "{x}"],
+])
+def test_a_folder_as_an_input_file_is_bad_data(sample, tmp_path, args):
+    """A folder where a mesh, profile, handles file or artifact is expected: exit 1 (an
+    unreadable input, SPEC §2) everywhere, naming it."""
+    x = tmp_path / "in"
+    for suffix in (".obj", ".stl", ".csv", ".json"):
+        (tmp_path / f"in{suffix}").mkdir()
+    args = [str(a).format(d=sample, x=x) for a in args]
+    out = [] if args[0] == "inspect" else ["-o", tmp_path / "out"]
+    run_bad([sample, tmp_path], [*args, *out], 1, "in", "directory")
+
+
+# -- item 4: the OBJs of every artifact are parsed and checked against their JSON --------------
+
+def _vertex_line(lines, k=0):
+    return [i for i, line in enumerate(lines) if line.startswith(b"v ")][k]
+
+
+def _edit_lines(change):
+    def edit(data):
+        lines = data.splitlines()
+        change(lines)
+        return b"\n".join(lines) + b"\n"
+    return edit
+
+
+OBJ_EDITS = {
+    "garbage": lambda data: bytes(range(256)) * 8,
+    "text": lambda data: b"this is not an OBJ file\n",
+    "empty": lambda data: b"",
+    "truncated": lambda data: data[: len(data) // 2].rsplit(b"\n", 1)[0] + b"\n",
+    "vertex-removed": _edit_lines(lambda ls: ls.pop(_vertex_line(ls, 1))),
+    "vertex-added": _edit_lines(lambda ls: ls.insert(_vertex_line(ls) + 1, b"v 0.5 0.5 0.0")),
+    "nan": _edit_lines(lambda ls: ls.__setitem__(_vertex_line(ls, 1), b"v nan 0.0 0.0")),
+    "inf": _edit_lines(lambda ls: ls.__setitem__(_vertex_line(ls, 2), b"v 1.0 1e999 0.0")),
+}
+
+#: kind -> (the OBJ's suffix, its sha256 field, the commands that read it; {x} the artifact).
+OBJ_READERS = {
+    "flat": (".obj", ("obj_sha256",), [["nest", "{x}", "--sheet", "2500x1250", "--scale", 100],
+                                       ["inspect", "{x}"]]),
+    "mold": (".obj", ("obj_sha256",), [["nest", "{d}/flat", "--mold", "{x}", "--sheet",
+                                        "2500x1250", "--scale", 100]]),
+    "mold-panels": (".panels.obj", ("files", "panels_obj", "sha256"), [["inspect", "{x}"]]),
+    "sheets": (".obj", ("obj_sha256",), [["report", "{x}"], ["inspect", "{x}"]]),
+    "strips": (".obj", ("obj_sha256",), [["unfold", "{x}"], ["inspect", "{x}"]]),
+    "shell": (".obj", ("obj_sha256",), [["inspect", "{x}"], ["report", "{x}"]]),
+}
+
+
+@pytest.mark.parametrize("edit", sorted(OBJ_EDITS))
+@pytest.mark.parametrize("kind", sorted(OBJ_READERS))
+def test_edited_obj_with_its_hash_updated(sample, tmp_path, kind, edit):
+    """Garbage, truncated, one vertex less or more, NaN or inf in the OBJ of any artifact,
+    the sha256 in its JSON updated to match: exit 1, one line naming the OBJ."""
+    suffix, field, commands = OBJ_READERS[kind]
+    data = OBJ_EDITS[edit]((sample / f"{kind.split('-')[0]}{suffix}").read_bytes())
+
+    def update(doc):
+        record = doc["data"]
+        for key in field[:-1]:
+            record = record[key]
+        record[field[-1]] = hashlib.sha256(data).hexdigest()
+
+    bad = copy_artifact(sample / f"{kind.split('-')[0]}.json", tmp_path, "bad", update)
+    (tmp_path / f"bad{suffix}").write_bytes(data)
+    for command in commands:
+        args = [str(a).format(d=sample, x=bad) for a in command]
+        out = [] if args[0] == "inspect" else ["-o", tmp_path / "out"]
+        result = run_bad([sample, tmp_path], [*args, *out], 1, f"bad{suffix}")
+        assert result.stdout == ""
