@@ -13,7 +13,7 @@ from shapely.geometry import Polygon
 from dgpc_cli.io.flat import read_flat
 from dgpc_cli.io.mold import read_mold
 from dgpc_cli.io.sheets import read_sheets
-from dgpc_cli.report.net import profile_figure
+from dgpc_cli.report.mold import profile_figure
 
 
 @pytest.mark.parametrize("name", ["gehry-facade", "timber-cladding"])
