@@ -324,3 +324,31 @@ def test_near_congruent_parts_share_no_fit_polygons_and_keep_the_spacing(sample,
     gaps = [placed[i].distance(placed[j]) for i in range(len(placed))
             for j in range(i + 1, len(placed)) if sheets[i] == sheets[j]]
     assert SPACING - 1e-6 <= min(gaps) <= SPACING + 2 * 0.25 * SPACING
+
+
+def test_long_outlines_nest_by_a_simplified_outline_and_keep_the_spacing():
+    """A strip trimmed along a curved edge of its reference has hundreds of outline vertices:
+    its no-fit polygons use a simplified outline (at most MAX_PIECE_VERTICES vertices), the
+    simplification added to its spacing, so the true outlines keep the spacing."""
+    from dgpc_cli.nesting.blf import Sheet
+    from dgpc_cli.nesting.geometry import MAX_PIECE_VERTICES
+    from dgpc_cli.stages.nest import nest_parts
+
+    t = np.linspace(0.0, np.pi, 400)[1:-1]
+    end = np.column_stack([3.0 + 0.2 * np.sin(t) + 0.01 * np.sin(40 * t),
+                           0.25 - 0.25 * np.cos(t)])          # a wavy trimmed end, 398 points
+    outline = np.vstack([[0.0, 0.0], [3.0, 0.0], end, [3.0, 0.5], [0.0, 0.5]])
+    records = [{"id": f"P{i}", "strip": i, "class": f"C{i}", "outline": outline.tolist(),
+                "geodesics": [[[0.0, 0.0], [3.0, 0.0]], [[0.0, 0.5], [3.0, 0.5]]],
+                "score": [], "label": [1.5, 0.25]} for i in range(6)]
+    parts = prepare_parts(records, SCALE)
+    assert all(len(p.pieces) <= MAX_PIECE_VERTICES for p in parts)
+    assert all(0 < p.deviation <= 0.01 * 320 for p in parts)     # mm, of a 320 mm part
+    result = nest_parts(records, Sheet(*SHEET, MARGIN, SPACING), [0.0, 180.0], scale=SCALE)
+    assert len(result.placements) == len(records)
+    placed = [Polygon(transform(result.parts[q.index].outline, q.rotation, q.translation))
+              for q in result.placements]
+    sheets = [q.sheet for q in result.placements]
+    gaps = [placed[i].distance(placed[j]) for i in range(len(placed))
+            for j in range(i + 1, len(placed)) if sheets[i] == sheets[j]]
+    assert gaps and min(gaps) >= SPACING - 1e-6

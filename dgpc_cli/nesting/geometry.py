@@ -36,6 +36,12 @@ GROUP_TOL_MM = 1e-3
 GROUP_SPACING_FRACTION = 0.25
 
 
+#: An outline with more vertices than this (a strip trimmed along a curved edge of the
+#: reference) is simplified for its no-fit polygons (never for the cut): a no-fit polygon sums
+#: every pair of convex pieces, so hundreds of triangles per part made one take minutes.
+MAX_PIECE_VERTICES = 64
+
+
 def group_tolerance(spacing: float) -> float:
     """How far (mm) two parts' outlines may differ to share no-fit polygons."""
     return max(GROUP_TOL_MM, GROUP_SPACING_FRACTION * spacing)
@@ -46,7 +52,8 @@ class Part:
     """One flat part in mm: ``outline (n, 2)`` ccw, ``score`` open polylines, ``label`` point,
     ``geodesics`` its two developed geodesics ``A, B (m, 2)``, ``pieces (k, 4, 2)`` convex
     pieces (triangles repeat a vertex), ``group`` index of parts sharing no-fit polygons and
-    ``deviation`` from the group's leader (mm)."""
+    ``deviation``: how far (mm) the outline may lie from the pieces its no-fit polygons use
+    (its group leader's, of a simplified outline where it is long; added to the spacing)."""
 
     id: str
     strip: int
@@ -90,6 +97,29 @@ def convex_pieces(outline: np.ndarray, geodesics=None) -> np.ndarray:
     return coords[:, [0, 1, 2, 2]]
 
 
+def piece_outline(outline: np.ndarray) -> tuple[np.ndarray, float]:
+    """The outline the no-fit polygons use and how far (mm) it lies from ``outline``: the
+    outline itself up to :data:`MAX_PIECE_VERTICES` vertices, else its Douglas–Peucker
+    simplification (topology kept) with the smallest tolerance, doubled from 1e-4 of the
+    diagonal, that brings it within that count. Every vertex of either outline is within the
+    tolerance of the other (the simplified one keeps a subset of the vertices), so adding it
+    to the spacing keeps the true outlines apart."""
+    outline = np.asarray(outline, float)
+    if len(outline) <= MAX_PIECE_VERTICES:
+        return outline, 0.0
+    poly = Polygon(outline)
+    tol = 1e-4 * float(np.linalg.norm(np.ptp(outline, axis=0)))
+    while True:
+        simple = poly.simplify(tol, preserve_topology=True)
+        coords = np.asarray(simple.exterior.coords)[:-1]
+        if len(coords) <= MAX_PIECE_VERTICES or not simple.is_valid:
+            break
+        tol *= 2.0
+    if not simple.is_valid or simple.is_empty:
+        return outline, 0.0
+    return coords, tol
+
+
 def prepare_parts(flat_parts: list[dict], k: float, tol: float = GROUP_TOL_MM) -> list[Part]:
     """The flat artifact's part records scaled by ``k`` (mm per model unit), grouped: a part
     joins the first group whose leader's outline is within ``tol`` (mm) of its own."""
@@ -98,11 +128,13 @@ def prepare_parts(flat_parts: list[dict], k: float, tol: float = GROUP_TOL_MM) -
         outline = k * np.asarray(rec["outline"], float)
         geod = [k * np.asarray(g, float) for g in rec["geodesics"]]
         poly = Polygon(outline)
+        simple, simplified_by = piece_outline(outline)
+        pieces = convex_pieces(outline, geod) if simplified_by == 0.0 else convex_pieces(simple)
         parts.append(Part(
             id=rec["id"], strip=int(rec["strip"]), cls=rec["class"], outline=outline,
             score=[k * np.asarray(s, float) for s in rec["score"]],
             label=k * np.asarray(rec["label"], float), geodesics=geod,
-            area=float(poly.area), pieces=convex_pieces(outline, geod)))
+            area=float(poly.area), pieces=pieces, deviation=simplified_by))
     leaders: list[int] = []
     for i, p in enumerate(parts):
         for g, j in enumerate(leaders):
@@ -110,7 +142,8 @@ def prepare_parts(flat_parts: list[dict], k: float, tol: float = GROUP_TOL_MM) -
             if q.shape == p.outline.shape:
                 dev = float(np.max(np.linalg.norm(q - p.outline, axis=1)))
                 if dev <= tol:
-                    p.group, p.deviation = g, dev
+                    p.group = g
+                    p.deviation = max(p.deviation, parts[j].deviation) + dev
                     break
         else:
             p.group = len(leaders)
