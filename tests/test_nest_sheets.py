@@ -352,3 +352,25 @@ def test_long_outlines_nest_by_a_simplified_outline_and_keep_the_spacing():
     gaps = [placed[i].distance(placed[j]) for i in range(len(placed))
             for j in range(i + 1, len(placed)) if sheets[i] == sheets[j]]
     assert gaps and min(gaps) >= SPACING - 1e-6
+
+
+def test_tapered_congruent_parts_pair_by_a_half_turn_and_keep_the_spacing():
+    """Congruent tapered strips interlock in pairs, one turned by 180° (a band of nearly
+    constant width): the fill places the pairs, and the real outlines keep the spacing."""
+    from dgpc_cli.nesting.blf import Sheet
+    from dgpc_cli.nesting.pairs import make_units
+    from dgpc_cli.stages.nest import nest_parts
+
+    outline = [[0.0, 0.0], [3.0, 0.0], [3.0, 0.2], [0.0, 0.5]]
+    records = [{"id": f"P{i}", "strip": i, "class": "C01", "outline": outline,
+                "geodesics": [[[0.0, 0.0], [3.0, 0.0]], [[0.0, 0.5], [3.0, 0.2]]],
+                "score": [], "label": [1.0, 0.2]} for i in range(4)]
+    units = make_units(prepare_parts(records, SCALE), [0.0, 180.0], SPACING)
+    assert [len(u.members) for u in units] == [2, 2]
+    assert {m.rotation for u in units for m in u.members} == {0.0, 180.0}
+    result = nest_parts(records, Sheet(*SHEET, MARGIN, SPACING), [0.0, 180.0], scale=SCALE)
+    placed = [Polygon(transform(result.parts[q.index].outline, q.rotation, q.translation))
+              for q in result.placements]
+    assert len(placed) == 4 and {q.sheet for q in result.placements} == {0}
+    gaps = [placed[i].distance(placed[j]) for i in range(4) for j in range(i + 1, 4)]
+    assert min(gaps) >= SPACING - 1e-6

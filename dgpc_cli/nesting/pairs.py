@@ -100,7 +100,7 @@ def make_units(parts: list[Part], rotations: list[float], spacing: float) -> lis
             geom = Part(
                 id=pa.id, strip=pa.strip, cls=pa.cls,
                 outline=np.concatenate([pa.outline @ R1.T, pb.outline @ R2.T + t]),
-                score=[], label=pa.label, area=pa.area + pb.area, width=pa.width,
+                score=[], label=pa.label, geodesics=[], area=pa.area + pb.area,
                 pieces=np.concatenate([pa.pieces @ R1.T, pb.pieces @ R2.T + t]),
                 group=next_group, deviation=max(pa.deviation, pb.deviation),
                 rotations=unit_rots)
