@@ -133,7 +133,8 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
             net.f_mm, schedules, reference=surface, boundary_ids=rim,
             handle_ids=handle_ids, handle_targets=handle_targets, soft=SOFT[mode], steps=steps,
             max_iter=max_iter, tol=tol, backend=backend, progress=progress,
-            relax=RELAX.get(mode))
+            relax=RELAX.get(mode), gpc_tol=gpc_tol if mode == "isometric" else None,
+            max_strain=max_strain if mode == "isometric" else None)
 
     out_json, _ = artifact_paths(output)
     folder = out_json.resolve().parent

@@ -95,6 +95,8 @@ def optimize_net(
     backend: str = "auto",
     progress: Callable[[int, dict], None] | None = None,
     relax: str | None = None,
+    gpc_tol: float | None = None,
+    max_strain: float | None = None,
 ) -> OptimizeOutcome:
     """Optimize the net ``f (m, n, 3)`` under ``weights`` (SPEC §4).
 
@@ -108,7 +110,9 @@ def optimize_net(
     step that soft terms or regularizers held off ``tol`` is followed by a projection onto the
     hard terms alone (damped, so it moves the net as little as it must). ``relax`` names a
     regularizer that is then lowered tenfold per round while the strain against the input
-    falls and no pleat appears (see :func:`_relax`). The returned ``R`` is the paper's
+    falls, no pleat appears and the gpc angle defect stays within ``gpc_tol`` (radians; when
+    given), then (6) weighed more while the defect is above it and the strain within
+    ``max_strain`` (see :func:`_relax`). The returned ``R`` is the paper's
     constraint error over the hard terms at the returned vertices, net rescaled to mean edge
     length 1 (§6.2.5).
 
@@ -163,7 +167,8 @@ def optimize_net(
         results.append(result)
     if relax is not None and relax in problem.active() and total < max_iter:
         f_input = f if problem.f0 is None else problem.f0
-        for result in _relax(problem, relax, x, f_input, targets,
+        for result in _relax(problem, relax, x, f_input, targets, gpc_tol=gpc_tol,
+                             max_strain=max_strain,
                              max_iter=(max_iter - total) if budget else TOL.max_iter, tol=tol,
                              backend=backend, workspace=workspace,
                              callback=lambda k, r, _base=total: progress and progress(
@@ -208,6 +213,11 @@ def optimize_net(
 #: by at least RELAX_GAIN per round and the pleat measure stays below half its tolerance (the
 #: last round, without it, reaches an exact isometric deformation where there is one).
 RELAX_FRACTIONS, RELAX_ITER, RELAX_GAIN = (1e-1, 1e-2, 1e-3, 0.0), 30, 0.9
+#: ... and while the gpc angle defect stays within this fraction of --gpc-tol: the projection
+#: onto the hard terms that follows moves it (a cylinder twisted at 21×13: 9.8e-5 → 1.17e-4).
+RELAX_GPC_MARGIN = 0.5
+#: Factors of the gpc weight tried, one round each, where the net is still above that margin.
+RELAX_GPC_FACTORS = (4.0, 16.0, 64.0)
 
 
 def _default_budget(steps: int, drag: bool, relax: bool, pulling: bool) -> int:
@@ -232,52 +242,85 @@ def _step_limits(s: int, steps: int, drag: bool, max_iter: int, tol: float) -> d
 
 
 def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targets, *,
-           max_iter: int, tol: float, backend: str, workspace,
-           callback=None) -> list[SolverResult]:
+           max_iter: int, tol: float, backend: str, workspace, gpc_tol: float | None = None,
+           max_strain: float | None = None, callback=None) -> list[SolverResult]:
     """Lower the weight of the regularizer ``name`` (the drag's smoothness) as the net settles,
     but never to a pleat: an isometric drag is a weighing of (6) against the edge lengths, and
     the less the smoothness weighs, the smaller the strain — until the net starts to pleat
-    (their exact solutions). Returns the rounds' solver results; a round that did not help has
+    (their exact solutions). A round is kept only if it keeps the gpc angle defect (6) within
+    ``gpc_tol`` (or, where the net started above it, no larger): the smallest strain *of a
+    gpc net within its tolerance* is sought, not the smallest strain. Returns the rounds'
+    solver results; a round that did not help has
     status ``rejected`` and the net it started from as its ``x``. The rounds take at most
     ``max_iter`` iterations together."""
     def measure(xv):
         g = problem.vertices(xv)
         corrugation = pleat(g)
         return (float(np.nanmax(strain(g, f_input)[0])),
-                float(corrugation.max()) if corrugation.size else 0.0)
+                float(corrugation.max()) if corrugation.size else 0.0,
+                float(np.nanmax(gpc_angle_defect(g))))
 
-    best, _ = measure(x)
+    best, _, current = measure(x)
+    defect_limit = np.inf if gpc_tol is None else max(RELAX_GPC_MARGIN * gpc_tol, current)
     accepted = []
     done = 0                                        # iterations of the rounds so far
-    fractions = list(RELAX_FRACTIONS)
-    while fractions and done < max_iter:
-        fraction = fractions.pop(0)
-        weight = fraction * problem.weights[name].end
-        lowered = Problem(problem.layout, problem.scale,
-                          {**problem.weights, name: Schedule.constant(weight)}, problem.f0,
-                          problem.handle_ids, problem.handle_targets, problem.reference,
-                          problem.soft, problem.boundary_ids, problem.f_start)
-        result = guided_projection(x, lowered.terms(targets),
+    level = problem.weights[name].end               # the regularizer's weight of the net x
+
+    def round_at(weights: dict, label: str):
+        nonlocal done
+        result = guided_projection(x, _reweighted(problem, weights).terms(targets),
                                    max_iter=min(max_iter - done, RELAX_ITER), tol=tol,
                                    backend=backend, workspace=workspace,
                                    retract=problem.layout.orient_edges,
                                    callback=callback and (lambda k, r, _done=done: callback(
                                        _done + k, r)))
         done += result.iterations
-        worst, corrugation = measure(result.x)
-        log.info("%s weight %.0e: strain %.3g, pleat %.3g (%d iterations)", name, weight, worst,
-                 corrugation, result.iterations)
+        worst, corrugation, defect = measure(result.x)
+        log.info("%s: strain %.3g, pleat %.3g, gpc defect %.3g (%d iterations)", label, worst,
+                 corrugation, defect, result.iterations)
+        return result, worst, corrugation, defect
+
+    fractions = list(RELAX_FRACTIONS)
+    while fractions and done < max_iter:
+        fraction = fractions.pop(0)
+        weight = fraction * problem.weights[name].end
+        result, worst, corrugation, defect = round_at({name: weight},
+                                                      f"{name} weight {weight:.0e}")
         if not (np.isfinite(worst) and worst <= RELAX_GAIN * best
-                and corrugation <= 0.5 * TOL.pleat):
+                and corrugation <= 0.5 * TOL.pleat and defect <= defect_limit):
             result.status, result.x = "rejected", x      # its work counts, its net does not
             accepted.append(result)
             # no gain at this weight: one last try without it (an exact isometric deformation
             # is reached there when one exists; a pleat is refused)
             fractions = [0.0] if fraction > 0 else []
             continue
-        best, x = worst, result.x
+        best, x, current, level = worst, result.x, defect, weight
+        accepted.append(result)
+    # the drag left the gpc defect above its margin: weigh (6) more, round by round, while the
+    # defect falls, no pleat appears and the strain stays within max_strain (or no larger)
+    strain_limit = np.inf if max_strain is None else max(max_strain, best)
+    for factor in RELAX_GPC_FACTORS:
+        if gpc_tol is None or current <= RELAX_GPC_MARGIN * gpc_tol or done >= max_iter:
+            break
+        gpc_weight = factor * problem.weights["gpc"].end
+        result, worst, corrugation, defect = round_at({name: level, "gpc": gpc_weight},
+                                                      f"gpc weight {gpc_weight:.0e}")
+        if not (np.isfinite(worst) and worst <= strain_limit and defect < current
+                and corrugation <= 0.5 * TOL.pleat):
+            result.status, result.x = "rejected", x
+            accepted.append(result)
+            break
+        best, x, current = worst, result.x, defect
         accepted.append(result)
     return accepted
+
+
+def _reweighted(problem: Problem, weights: dict[str, float]) -> Problem:
+    """``problem`` with the terms of ``weights`` at those constant weights."""
+    return Problem(problem.layout, problem.scale,
+                   {**problem.weights, **{k: Schedule.constant(w) for k, w in weights.items()}},
+                   problem.f0, problem.handle_ids, problem.handle_targets, problem.reference,
+                   problem.soft, problem.boundary_ids, problem.f_start)
 
 
 #: Rows named in a status message.
