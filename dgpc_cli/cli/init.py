@@ -10,7 +10,7 @@ import click
 from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
 from dgpc_cli.errors import DgpcError
-from dgpc_cli.io.artifact import artifact_paths, file_input, relative_input
+from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import net_files
 from dgpc_cli.io.rhino import with_3dm
@@ -151,12 +151,9 @@ def init(reference, surface, profile, method, direction, from_quads, largest_com
     mesh = None
     if surface:
         result = init_revolution(profile, rows, cols, span_deg=span, twist=twist,
-                                 reference_out=reference_out, units=units)
+                                 reference_out=reference_out, units=units, folder=folder)
         net = result.net
-        if "profile" in net.inputs:
-            net.inputs["profile"] = file_input(net.inputs["profile"], folder)
         if result.reference_obj is not None:
-            net.data["reference"] = relative_input(reference_out, folder, result.reference_obj)
             files[reference_out] = result.reference_obj
     elif method:
         net, mesh = _mesh_net(reference, method, d, rows, cols, spacing, largest_component,
