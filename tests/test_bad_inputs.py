@@ -317,3 +317,108 @@ def test_edited_obj_with_its_hash_updated(sample, tmp_path, kind, edit):
         out = [] if args[0] == "inspect" else ["-o", tmp_path / "out"]
         result = run_bad([sample, tmp_path], [*args, *out], 1, f"bad{suffix}")
         assert result.stdout == ""
+
+
+# -- item 9: the files an artifact lists lie in its folder; a recorded reference is checked -----
+
+#: kind -> the listed files moved out of the artifact's folder ((field path in data, suffix)),
+#: and the commands that read them ({x} the artifact, {d} the sample folder).
+LISTED = {
+    "mold": ([(("obj",), ".obj"), (("files", "profile_csv", "path"), ".profile.csv"),
+              (("files", "panels_obj", "path"), ".panels.obj")],
+             [["nest", "{d}/flat", "--mold", "{x}", "--sheet", "2500x1250", "--scale", 100],
+              ["inspect", "{x}"], ["report", "{x}"]]),
+    "sheets": ([(("files", "sheet01_png", "path"), ".sheet01.png"), (("obj",), ".obj")],
+               [["report", "{x}"], ["inspect", "{x}"]]),
+    "shell": ([(("cut_list",), ".csv")], [["inspect", "{x}"], ["report", "{x}"]]),
+    "flat": ([(("files", "parts_csv", "path"), ".parts.csv")],
+             [["nest", "{x}", "--sheet", "2500x1250", "--scale", 100]]),
+    "cat": ([(("obj",), ".obj")], [["planarize-strips", "{x}"], ["inspect", "{x}"]]),
+}
+
+
+def _listed_cases():
+    for kind, (fields, commands) in sorted(LISTED.items()):
+        for field, suffix in fields:
+            for how in ("absolute", "dotdot"):
+                yield pytest.param(kind, field, suffix, how, commands,
+                                   id=f"{kind}-{'.'.join(field)}-{how}")
+
+
+@pytest.mark.parametrize("kind, field, suffix, how, commands", list(_listed_cases()))
+def test_a_listed_file_outside_the_artifacts_folder(sample, tmp_path, kind, field, suffix,
+                                                    how, commands):
+    """A listed file moved out of the artifact's folder, its path in the JSON an absolute one
+    or one with '..', its sha256 still matching: exit 1, one line naming the JSON and field."""
+    art, elsewhere = tmp_path / "art", tmp_path / "elsewhere"
+    art.mkdir()
+    elsewhere.mkdir()
+    moved = elsewhere / f"bad{suffix}"
+    target = str(moved) if how == "absolute" else f"../elsewhere/bad{suffix}"
+
+    def point_out(doc):
+        record = doc["data"]
+        for key in field[:-1]:
+            record = record[key]
+        record[field[-1]] = target
+
+    bad = copy_artifact(sample / f"{kind}.json", art, "bad", point_out)
+    (art / f"bad{suffix}").rename(moved)
+    name = ".".join(("data", *(field[:-1] if field[-1] == "path" else field)))
+    for command in commands:
+        args = [str(a).format(d=sample, x=bad) for a in command]
+        out = [] if args[0] == "inspect" else ["-o", tmp_path / "out"]
+        result = run_bad([sample, tmp_path], [*args, *out], 1, "bad.json", name, target)
+        assert result.stdout == ""
+        assert ("absolute" if how == "absolute" else "'..'") in result.stderr
+
+
+@pytest.fixture(scope="module")
+def fitted(tmp_path_factory):
+    """A small net of revolution whose reference mesh is recorded one folder up ('..')."""
+    d = tmp_path_factory.mktemp("reference")
+    (d / "nets").mkdir()
+    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 7, "--cols", 5,
+         "--reference-out", d / "ref.obj", "-o", d / "nets" / "net")
+    return d
+
+
+def test_a_recorded_reference_may_lie_elsewhere(fitted, tmp_path):
+    """The exception: a reference mesh recorded outside the net's folder is used (sha256
+    checked) by optimize --mode fit, inspect and report."""
+    assert json.loads((fitted / "nets" / "net.json").read_text())["data"]["reference"][
+        "path"] == "../ref.obj"
+    result = dgpc("optimize", fitted / "nets" / "net", "--mode", "fit", "--max-iter", 2,
+                  "-o", tmp_path / "fit", expect=None)
+    assert result.exit_code in (0, 3), result.stderr
+    assert "hausdorff" in json.loads(dgpc("inspect", fitted / "nets" / "net").stdout)
+
+
+@pytest.mark.parametrize("command", [["optimize", "{n}", "--mode", "fit", "-o", "{o}/fit"],
+                                     ["inspect", "{n}"], ["report", "{n}", "-o", "{o}/r"]])
+def test_a_changed_recorded_reference_is_refused(fitted, tmp_path, command):
+    """The recorded reference edited after the net was written: every command that uses it
+    refuses it (exit 1, one line naming the net and data.reference), before any solve."""
+    d = tmp_path / "copy"
+    shutil.copytree(fitted, d)
+    with open(d / "ref.obj", "ab") as fh:
+        fh.write(b"v 0 0 0\n")
+    args = [a.format(n=d / "nets" / "net", o=tmp_path) for a in command]
+    result = run_bad([d, tmp_path], args, 1, "net.json", "data.reference", "../ref.obj",
+                     "sha256")
+    assert result.stdout == ""
+
+
+@pytest.mark.parametrize("edit, words", [
+    pytest.param(lambda r: r.pop("sha256"), ["no sha256 recorded"], id="no-sha256"),
+    pytest.param(lambda r: r.__setitem__("path", "../../nowhere.obj"), ["missing"],
+                 id="missing"),
+])
+def test_a_recorded_reference_without_a_hash_or_file(fitted, tmp_path, edit, words):
+    d = tmp_path / "copy"
+    shutil.copytree(fitted, d)
+    doc = json.loads((d / "nets" / "net.json").read_text())
+    edit(doc["data"]["reference"])
+    (d / "nets" / "net.json").write_text(json.dumps(doc))
+    run_bad([d, tmp_path], ["optimize", d / "nets" / "net", "--mode", "fit",
+                            "-o", tmp_path / "fit"], 1, "net.json", "data.reference", *words)

@@ -15,7 +15,7 @@ from dgpc_cli.core.solver import Schedule
 from dgpc_cli.core.solver.linear import BACKENDS
 from dgpc_cli.errors import DgpcError, NotConverged
 from dgpc_cli.geodesics.extension import fit_surface
-from dgpc_cli.io.artifact import artifact_paths, file_input, resolve_input
+from dgpc_cli.io.artifact import artifact_paths, file_input, recorded_file
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.handles import read_handles
 from dgpc_cli.io.mesh import load_mesh
@@ -34,7 +34,7 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
     """The reference mesh: --reference, else the one the net records (fit needs one); only its
     largest piece when the net was made with ``init --largest-component``."""
     if reference is None and mode == "fit" and net.data.get("reference"):
-        reference = resolve_input(net.data["reference"], json_path)
+        reference = recorded_file(net.data["reference"], json_path, "data.reference")
         log.info("using the reference recorded in %s: %s", json_path, reference)
     if reference is None:
         if mode == "fit":

@@ -37,10 +37,10 @@ from ..errors import DgpcError
 from .artifact import (
     artifact_files,
     artifact_paths,
+    listed_path,
     load_envelope,
     read_listed,
     relative_input,
-    resolve_input,
 )
 from .obj import check_obj_objects, parse_obj
 from .strips import format_parts_obj, read_obj_checked
@@ -152,8 +152,9 @@ def read_flat(stem: str | Path) -> FlatArtifact:
     check_obj_objects(obj, [(p["id"], 2 * len(p["geodesics"][0])) for p in data["parts"]],
                       obj_path, "data.parts")
     for key, record in data["files"].items():
-        read_listed(resolve_input(record, json_path), record["sha256"], json_path,
-                    f"data.files.{key}")
+        field = f"data.files.{key}"
+        read_listed(listed_path(record["path"], json_path, field), record["sha256"], json_path,
+                    field)
     parts, classes = data["parts"], data["classes"]
     ids = [p["id"] for p in parts]
     if len(set(ids)) != len(ids):
