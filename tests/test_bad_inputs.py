@@ -6,6 +6,7 @@ from __future__ import annotations
 import hashlib
 import json
 import shutil
+from pathlib import Path
 
 import click
 import numpy as np
@@ -14,6 +15,7 @@ from cli_helpers import dgpc
 
 from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.main import COMMANDS, cli
+from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.net import NetArtifact, write_net
 
 
@@ -422,3 +424,35 @@ def test_a_recorded_reference_without_a_hash_or_file(fitted, tmp_path, edit, wor
     (d / "nets" / "net.json").write_text(json.dumps(doc))
     run_bad([d, tmp_path], ["optimize", d / "nets" / "net", "--mode", "fit",
                             "-o", tmp_path / "fit"], 1, "net.json", "data.reference", *words)
+
+
+# -- item 6: a net beyond the memory limit is refused before it is made -------------------------
+
+FELT = Path(__file__).resolve().parents[1] / "samples" / "meshes" / "felt.obj"
+
+
+@pytest.mark.parametrize("args, option", [
+    (["--surface", "revolution", "--profile", "catenoid", "--rows", 100000, "--cols", 100000],
+     "--rows/--cols"),
+    ([FELT, "--method", "geodesic", "--rows", 100000, "--cols", 100000], "--rows/--cols"),
+    ([FELT, "--method", "geodesic", "--cols", 100000], "--rows/--cols"),
+    ([FELT, "--method", "geodesic", "--spacing", 1e-9], "--spacing"),
+    ([FELT, "--method", "project", "--direction", "0,0,1", "--spacing", 1e-300], "--spacing"),
+    ([FELT, "--method", "project", "--direction", "0,0,1", "--rows", 3000, "--cols", 3000],
+     "--rows/--cols"),
+], ids=["revolution", "geodesic-rows-cols", "geodesic-cols", "geodesic-spacing",
+        "project-spacing", "project-rows-cols"])
+def test_a_net_beyond_the_memory_limit_is_refused(tmp_path, args, option):
+    result = run_bad([tmp_path], ["init", *args, "-o", tmp_path / "big"], 1, option,
+                     "memory", "beyond the limit of 4 GiB")
+    assert result.stdout == "" and not any(tmp_path.iterdir())
+
+
+def test_the_memory_limit():
+    from dgpc_cli.stages.net_size import MAX_NET_BYTES, check_net_size
+
+    check_net_size(1448, 1448, "--rows/--cols", "")
+    for m, n in ((1449, 1448), (float("inf"), 3), (1e300, 1e300)):
+        with pytest.raises(DgpcError):
+            check_net_size(m, n, "--rows/--cols", "")
+    assert MAX_NET_BYTES == 4 * 2**30  # the README documents it

@@ -17,6 +17,7 @@ from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.units import DEFAULT_UNITS, UNIT_MM
 from dgpc_cli.stages.init import init_revolution
 from dgpc_cli.stages.inspect import summarize
+from dgpc_cli.stages.net_size import check_net_size
 from dgpc_cli.surfaces.profiles import describe_builtins
 
 
@@ -39,6 +40,8 @@ def _mesh_net(reference, method, direction, rows, cols, spacing, largest_compone
     from dgpc_cli.io.mesh import load_mesh
     from dgpc_cli.stages.init_mesh import init_geodesic, init_project
 
+    if rows is not None and cols is not None:  # refused before the mesh is read
+        check_net_size(rows, cols, "--rows/--cols", "use fewer --rows or --cols")
     mesh = load_mesh(reference, pieces="largest" if largest_component else "one")
     domain = continued(mesh, extend)
     if method == "geodesic":

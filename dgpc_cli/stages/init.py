@@ -11,6 +11,7 @@ from dgpc_cli.io.artifact import file_input, relative_input
 from dgpc_cli.io.mesh import write_mesh_obj
 from dgpc_cli.io.net import NetArtifact
 from dgpc_cli.io.units import DEFAULT_UNITS, from_mm, mm_per_unit
+from dgpc_cli.stages.net_size import check_net_size
 from dgpc_cli.surfaces.profiles import BUILTIN_PROFILES, Profile, profile_from_spec
 from dgpc_cli.surfaces.revolution import (
     extended,
@@ -50,6 +51,7 @@ def init_revolution(profile: str, rows: int, cols: int, *, span_deg: float = 180
     artifact does not depend on where it was made.
     """
     folder = Path.cwd() if folder is None else Path(folder)
+    check_net_size(rows, cols, "--rows/--cols", "use fewer --rows or --cols")
     prof = profile_from_spec(profile)
     k = mm_per_unit(units, "--units")
     prof_mm = Profile(prof.name, prof.r * k, prof.h * k)

@@ -30,6 +30,7 @@ from dgpc_cli.geodesics.tracing import (
 from dgpc_cli.io.mesh import ReferenceMesh
 from dgpc_cli.io.net import NetArtifact
 from dgpc_cli.metrics.residuals import gpc_angle_defect_max
+from dgpc_cli.stages.net_size import check_net_size
 
 log = logging.getLogger(__name__)
 
@@ -73,6 +74,23 @@ def _check_count(count: int, what: str, option: str):
     if count < 3:
         raise DgpcError(f"the usable part of the mesh gives only {count} {what}; a net needs "
                         "at least 3 (lower --spacing)", source=option)
+
+
+def _check_size(cols: int | None, rows: int | None, spacing: float | None, across: float,
+                along: float) -> None:
+    """Refuse a net beyond the memory limit before its positions are made: ``cols`` columns
+    over the length ``across`` (or as many as fit at ``spacing``), ``rows`` rows over the length
+    ``along`` (or at ``spacing``, or square quads)."""
+    n = cols if cols is not None else across / spacing + 1
+    if rows is not None:
+        m = rows
+    elif spacing is not None:
+        m = along / spacing + 1
+    else:
+        m = along / (across / max(n - 1, 1)) + 1 if across > 0 else 1
+    source = "--spacing" if spacing is not None else "--rows/--cols"
+    check_net_size(m, n, source, "use a larger --spacing" if spacing is not None
+                   else "use fewer --rows or --cols")
 
 
 def _base_curve(mesh: ReferenceMesh, centre, direction):
@@ -159,6 +177,7 @@ def init_geodesic(mesh: ReferenceMesh, *, direction=None, rows: int | None = Non
     if j < probe - 1:
         t1, A, B = _refine_end(curve, normals, tracer, reach, t1, float(t_probe[j + 1]),
                                A, B)
+    _check_size(want, rows, spacing, t1 - t0, A + B)
     t = _positions(t0, t1, want, spacing)
     _check_count(len(t), "columns", "--spacing")
 
@@ -244,6 +263,7 @@ def init_project(mesh: ReferenceMesh, *, direction, rows: int | None = None,
         if x1 <= x0 or y1 <= y0:
             break
         ncols = cols if cols is not None else (DEFAULT_COLS if spacing is None else None)
+        _check_size(ncols, want_r, spacing, y1 - y0, x1 - x0)
         gy = _positions(y0, y1, ncols, spacing)
         if want_r is None and spacing is None:
             want_r = max(3, int(round((x1 - x0) / ((y1 - y0) / (len(gy) - 1)))) + 1)
