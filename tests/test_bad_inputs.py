@@ -283,6 +283,7 @@ OBJ_EDITS = {
     "vertex-added": _edit_lines(lambda ls: ls.insert(_vertex_line(ls) + 1, b"v 0.5 0.5 0.0")),
     "nan": _edit_lines(lambda ls: ls.__setitem__(_vertex_line(ls, 1), b"v nan 0.0 0.0")),
     "inf": _edit_lines(lambda ls: ls.__setitem__(_vertex_line(ls, 2), b"v 1.0 1e999 0.0")),
+    "huge": _edit_lines(lambda ls: ls.__setitem__(_vertex_line(ls, 3), b"v 1e308 0.0 0.0")),
 }
 
 #: kind -> (the OBJ's suffix, its sha256 field, the commands that read it; {x} the artifact).
@@ -295,6 +296,9 @@ OBJ_READERS = {
     "sheets": (".obj", ("obj_sha256",), [["report", "{x}"], ["inspect", "{x}"]]),
     "strips": (".obj", ("obj_sha256",), [["unfold", "{x}"], ["inspect", "{x}"]]),
     "shell": (".obj", ("obj_sha256",), [["inspect", "{x}"], ["report", "{x}"]]),
+    "cat": (".obj", ("obj_sha256",), [["planarize-strips", "{x}"], ["inspect", "{x}"],
+                                      ["optimize", "{x}", "--mode", "revolution"],
+                                      ["extract-mold", "{x}"]]),
 }
 
 
@@ -456,3 +460,78 @@ def test_the_memory_limit():
         with pytest.raises(DgpcError):
             check_net_size(m, n, "--rows/--cols", "")
     assert MAX_NET_BYTES == 4 * 2**30  # the README documents it
+
+
+# -- item 5: extreme but finite numbers end in one line, not an internal error ------------------
+
+def test_a_profile_row_at_1e308(tmp_path):
+    (tmp_path / "p.csv").write_text("r,h\n1,0\n1.2,0.5\n1e308,1e308\n")
+    run_bad([tmp_path], ["init", "--surface", "revolution", "--profile", tmp_path / "p.csv",
+                         "--rows", 9, "--cols", 7, "-o", tmp_path / "out"], 1,
+            "p.csv", "line 4", "1e+308")
+
+
+def test_a_mesh_vertex_at_1e308(tmp_path):
+    text = FELT.read_text().splitlines()
+    k = next(i for i, line in enumerate(text) if line.startswith("v "))
+    text[k] = "v 1e308 0 0"
+    (tmp_path / "m.obj").write_text("\n".join(text) + "\n")
+    run_bad([tmp_path], ["init", tmp_path / "m.obj", "--method", "geodesic",
+                         "-o", tmp_path / "out"], 1, "m.obj", "vertex 1", "1e+308")
+
+
+def test_a_handle_at_1e308(sample, tmp_path):
+    (tmp_path / "h.json").write_text(json.dumps(
+        {"handles": [{"index": [0, 0], "target": [1e308, 0, 0]}]}))
+    run_bad([sample, tmp_path], ["optimize", sample / "cat", "--mode", "isometric", "--handles",
+                                 tmp_path / "h.json", "-o", tmp_path / "out"], 1,
+            "h.json", "handles[0].target", "1e+308")
+
+
+@pytest.mark.parametrize("kind, edit, field", [
+    ("flat", lambda d: d["data"]["parts"][0]["geodesics"][0][1].__setitem__(0, 1e308),
+     "data.parts[0].geodesics[0][1]"),
+    ("flat", lambda d: d["data"]["parts"][1]["outline"][2].__setitem__(1, -1e300),
+     "data.parts[1].outline[2]"),
+    ("mold", lambda d: d["data"]["profile"]["r"].__setitem__(1, 1e308), "data.profile.r[1]"),
+])
+def test_a_number_at_1e308_in_an_artifact(sample, tmp_path, kind, edit, field):
+    bad = copy_artifact(sample / f"{kind}.json", tmp_path, "bad", edit)
+    args = (["nest", bad] if kind == "flat" else ["nest", sample / "flat", "--mold", bad])
+    run_bad([sample, tmp_path], [*args, "--sheet", "2500x1250", "--scale", 100,
+                                 "-o", tmp_path / "out"], 1, "bad.json", field, "beyond")
+
+
+@pytest.mark.parametrize("args, option", [
+    (["--sheet", "1e308x1e308"], "--sheet"),
+    (["--sheet", "2500x1250", "--margin", 1e300], "--margin"),
+    (["--sheet", "2500x1250", "--spacing", 1e300], "--spacing"),
+    (["--sheet", "2500x1250", "--scale", 1e308], "--scale"),
+])
+def test_a_huge_nest_option(sample, tmp_path, args, option):
+    run_bad([sample, tmp_path], ["nest", sample / "flat", *args, "-o", tmp_path / "out"], 1,
+            option, "beyond")
+
+
+@pytest.mark.parametrize("args, option", [
+    ([FELT, "--method", "geodesic", "--extend", 1e308], "--extend"),
+    ([FELT, "--method", "geodesic", "--extend", 1e30], "--extend"),
+    (["--surface", "revolution", "--profile", "catenoid", "--rows", 9, "--cols", 7,
+      "--twist", 1e308], "--twist"),
+])
+def test_a_huge_init_option(tmp_path, args, option):
+    run_bad([tmp_path], ["init", *args, "-o", tmp_path / "out"], 1, option)
+
+
+def test_a_non_manifold_mesh(tmp_path):
+    """A fin on an inner edge of the mesh (three faces on one edge) is refused on reading,
+    not deep in the geodesic tracer."""
+    lines = FELT.read_text().splitlines()
+    vertices = sum(line.startswith("v ") for line in lines)
+    faces = [line for line in lines if line.startswith("f ")]
+    a, b = (p.split("/")[0] for p in faces[len(faces) // 2].split()[1:3])
+    lines += ["v 0 0 50", f"f {a} {b} {vertices + 1}"]
+    (tmp_path / "fin.obj").write_text("\n".join(lines) + "\n")
+    run_bad([tmp_path], ["init", tmp_path / "fin.obj", "--method", "geodesic",
+                         "-o", tmp_path / "out"], 1, "fin.obj", "not a manifold mesh",
+            "borders 3 faces")

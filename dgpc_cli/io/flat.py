@@ -42,6 +42,7 @@ from .artifact import (
     read_listed,
     relative_input,
 )
+from .coordinates import bad_rows, coordinate_problem
 from .obj import check_obj_objects, parse_obj
 from .strips import format_parts_obj, read_obj_checked
 from .units import DEFAULT_UNITS, mm_per_unit
@@ -142,6 +143,22 @@ def flat_files(stem: str | Path, art: FlatArtifact) -> dict[Path, bytes]:
     return {**files, csv_path(stem): table}
 
 
+def _check_part_points(parts: list[dict], json_path: Path) -> None:
+    """Every point of every part (outline, score lines, label, geodesics) within the range of
+    :mod:`.coordinates`; DgpcError naming the first one beyond it."""
+    for i, part in enumerate(parts):
+        fields = [("outline", part["outline"]), ("label", [part["label"]])]
+        fields += [(f"score[{j}]", s) for j, s in enumerate(part["score"])]
+        fields += [(f"geodesics[{j}]", g) for j, g in enumerate(part["geodesics"])]
+        for name, points in fields:
+            points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+            bad = bad_rows(points)
+            if bad.size:
+                where = "" if name == "label" else f"[{int(bad[0])}]"
+                raise DgpcError(f"data.parts[{i}].{name}{where}: "
+                                f"{coordinate_problem(points[bad[0]])}", source=json_path)
+
+
 def read_flat(stem: str | Path) -> FlatArtifact:
     """Read and validate a flat artifact: envelope, schema, the OBJ's hash, and the classes'
     consistency with the parts (every part in exactly one class, quantities match)."""
@@ -156,6 +173,7 @@ def read_flat(stem: str | Path) -> FlatArtifact:
         read_listed(listed_path(record["path"], json_path, field), record["sha256"], json_path,
                     field)
     parts, classes = data["parts"], data["classes"]
+    _check_part_points(parts, json_path)
     ids = [p["id"] for p in parts]
     if len(set(ids)) != len(ids):
         raise DgpcError("data.parts: duplicate part ids", source=json_path)

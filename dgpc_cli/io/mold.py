@@ -38,6 +38,7 @@ from .artifact import (
     read_listed,
     relative_input,
 )
+from .coordinates import bad_rows, coordinate_problem
 from .obj import check_obj_objects, net_quads, parse_obj
 
 KIND = "mold"
@@ -231,6 +232,11 @@ def check_mold_data(data: dict, source: Path) -> None:
         if got != size:
             raise DgpcError(f"data.profile.{key}: {got} values, expected {size} "
                             f"(data.rows = {m})", source=source)
+        values = np.asarray(data["profile"][key], dtype=np.float64).reshape(-1, 1)
+        bad = bad_rows(values)
+        if bad.size:
+            raise DgpcError(f"data.profile.{key}[{int(bad[0])}]: "
+                            f"{coordinate_problem(values[bad[0]])}", source=source)
     ids = set()
     for k, piece in enumerate(data["pieces"]):
         a, b = piece["rows"]

@@ -27,6 +27,7 @@ from dgpc_cli.geodesics.tracing import (
     principal_frame,
     sample_geodesic,
 )
+from dgpc_cli.io.coordinates import bad_rows, coordinate_problem
 from dgpc_cli.io.mesh import ReferenceMesh
 from dgpc_cli.io.net import NetArtifact
 from dgpc_cli.metrics.residuals import gpc_angle_defect_max
@@ -325,8 +326,10 @@ def read_quad_obj(path: Path) -> tuple[np.ndarray, np.ndarray]:
     V, Q = np.asarray(verts, dtype=float), np.asarray(quads, dtype=np.int64)
     if Q.min() < 0 or Q.max() >= len(V):
         raise DgpcError("a face refers to a vertex that does not exist", source=path)
-    if not np.isfinite(V).all():
-        raise DgpcError("a vertex has a non-finite coordinate", source=path)
+    bad = bad_rows(V)
+    if bad.size:
+        raise DgpcError(f"vertex {int(bad[0]) + 1} has {coordinate_problem(V[bad[0]])}",
+                        source=path)
     return V, Q
 
 
