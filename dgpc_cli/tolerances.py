@@ -9,7 +9,7 @@ from dataclasses import dataclass
 class Tolerances:
     #: Solver stop on R (net scaled to mean edge length 1), SPEC §7.
     solver_R: float = 1e-9
-    #: Iteration limit of one optimization step.
+    #: Iteration limit of an optimization run, per handle step (`optimize --max-iter` default).
     max_iter: int = 200
     #: Shortest edge, relative to the mean, below which a net counts as folded.
     min_edge_ratio: float = 0.1

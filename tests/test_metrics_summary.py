@@ -84,3 +84,17 @@ def test_jsonable():
                     "c": np.bool_(True)})
     assert out == {"a": 1.5, "b": [2, None], "3": [1.0, None], "c": True}
     assert type(out["b"][0]) is int and type(out["c"]) is bool
+
+
+def test_straight_rows_depart_by_their_distance_from_a_line():
+    """A flat grid (every row a straight line: a circle of infinite radius) and one row bent
+    off its line by 0.3 out of the plane."""
+    from dgpc_cli.metrics.freeform import circle_departure, parallel_departure
+
+    u, v = np.meshgrid(np.arange(4.0), np.arange(5.0), indexing="ij")
+    f = np.stack([u, v, np.zeros_like(u)], axis=-1)
+    assert np.allclose(circle_departure(f), 0.0, atol=1e-12)
+    assert parallel_departure(f)["max"] <= 1e-12
+    f[2, 2, 2] = 0.3                        # row 2 is no longer straight: a circle fits it
+    d = circle_departure(f)
+    assert np.allclose(d[[0, 1, 3]], 0.0, atol=1e-12) and 0 < d[2] < 0.3

@@ -28,7 +28,7 @@ def chain(cwd: Path, out: str, profile: str):
         ["planarize-strips", f"{out}/fit", "-o", f"{out}/strips"],
         ["unfold", f"{out}/strips", "-o", f"{out}/flat"],
         ["nest", f"{out}/flat.json", "--sheet", "2500x1250", "--scale", "100",
-         "-o", f"{out}/sheets"],
+         "--rotations", "0", "-o", f"{out}/sheets"],
     ]
     for args in steps:
         result = subprocess.run([DGPC, "-q", *args], cwd=cwd, capture_output=True, text=True,

@@ -58,9 +58,13 @@ def test_init_records_the_unit_and_every_stage_carries_it(tmp_path):
     sheets = read_sheets(tmp_path / "sh")
     assert sheets.data["units"] == "mm" and sheets.data["sheet"]["part_units"] == "in"
     assert sheets.data["sheet"]["mm_per_unit"] == 25.4
-    # laths of the meridians and the parallels of one net (its transpose)
-    write_net(tmp_path / "across", NetArtifact(f=np.transpose(net.f, (1, 0, 2)), units="in"))
-    dgpc("laths", tmp_path / "cat", tmp_path / "across", "-o", tmp_path / "l")
+    # laths of the two families of a flat grid (the transpose of a catenoid net, its u-lines
+    # the parallels, is no gpc net, and laths refuses it)
+    u, v = np.meshgrid(np.linspace(0.0, 40.0, 6), np.linspace(0.0, 40.0, 6), indexing="ij")
+    grid = np.stack([u, v, np.zeros_like(u)], axis=-1)
+    write_net(tmp_path / "along", NetArtifact(f=grid, units="in"))
+    write_net(tmp_path / "across", NetArtifact(f=np.transpose(grid, (1, 0, 2)), units="in"))
+    dgpc("laths", tmp_path / "along", tmp_path / "across", "-o", tmp_path / "l")
     assert read_laths(tmp_path / "l").data["units"] == "in"
     for stem in ("cat", "iso", "s", "f", "m", "sh"):
         assert json.loads((tmp_path / f"{stem}.json").read_text())["schema_version"] == 2

@@ -31,6 +31,7 @@ from dgpc_cli.stages.extract_mold import (
     DEFAULT_TOL_FACTOR,
     extract_mold,
 )
+from dgpc_cli.stages.soundness import require_sound_net
 
 log = logging.getLogger(__name__)
 
@@ -78,6 +79,8 @@ def extract_mold_cmd(nets, segments, lam, panel_size, flat_tol, mold_max_length,
     check_writable(output, force, *(paths[k] for k in ("profile_csv", "profile_dxf",
                                                         "panels_csv", "panels_obj")))
     loaded = [(str(artifact_paths(stem)[0]), read_net(stem)) for stem in nets]
+    for name, net in loaded:
+        require_sound_net(net.f, name)
     unit = same_units([(name, net.units) for name, net in loaded])
     check_units(units_check, unit, loaded[0][0])
     mold = extract_mold([(name, net.f) for name, net in loaded], segments=segments, lam=lam,

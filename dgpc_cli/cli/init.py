@@ -3,12 +3,19 @@ a quad net (SPEC §5)."""
 
 from __future__ import annotations
 
+import logging
 from pathlib import Path
 
 import click
 
 from dgpc_cli.cli.finite_float import FiniteFloat
-from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
+from dgpc_cli.cli.options import (
+    check_writable,
+    force_opt,
+    format_opt,
+    output_opt,
+    show_progress,
+)
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
@@ -19,6 +26,8 @@ from dgpc_cli.stages.init import init_revolution
 from dgpc_cli.stages.inspect import summarize
 from dgpc_cli.stages.net_size import check_net_size
 from dgpc_cli.surfaces.profiles import describe_builtins
+
+log = logging.getLogger(__name__)
 
 
 def parse_direction(text: str | None):
@@ -35,22 +44,34 @@ def parse_direction(text: str | None):
     return d
 
 
-def _mesh_net(reference, method, direction, rows, cols, spacing, largest_component, extend):
+def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacing,
+              largest_component, extend):
     from dgpc_cli.geodesics.extension import continued
     from dgpc_cli.io.mesh import load_mesh
-    from dgpc_cli.stages.init_mesh import init_geodesic, init_project
+    from dgpc_cli.stages.init_choice import choose
 
     if rows is not None and cols is not None:  # refused before the mesh is read
         check_net_size(rows, cols, "--rows/--cols", "use fewer --rows or --cols")
     mesh = load_mesh(reference, pieces="largest" if largest_component else "one")
     domain = continued(mesh, extend)
-    if method == "geodesic":
-        net = init_geodesic(domain, direction=direction, rows=rows, cols=cols, spacing=spacing)
-    else:
-        net = init_project(domain, direction=direction, rows=rows, cols=cols, spacing=spacing)
-    net.parameters["largest_component"] = largest_component
+    grid, outcome, tried = choose(mesh, domain, method, base=base, direction=direction,
+                                  angle=angle, rows=rows, cols=cols, spacing=spacing,
+                                  extend_length=extend * mesh.bbox_diagonal)
+    net = grid.net
+    net.parameters.update(base=base or ("auto" if method == "geodesic" else None),
+                          angle=angle, largest_component=largest_component)
     if extend > 0:
         net.parameters["extend"] = extend
+    net.data["init"]["choice"] = {"chosen": grid.label, "coverage": outcome.coverage,
+                                  "tried": tried}
+    if outcome.note:
+        log.warning("%s", outcome.note)
+    if show_progress(ctx):
+        others = ", ".join(f"{t['candidate']} {100 * t['coverage']:.1f} %" for t in tried
+                           if "coverage" in t and t["candidate"] != grid.label)
+        click.echo(f"init: {grid.label}, {net.shape[0]} x {net.shape[1]} net covering "
+                   f"{100 * outcome.coverage:.1f} % of {mesh.path.name}"
+                   + (f" (also tried: {others})" if others else ""), err=True)
     return net, mesh
 
 
@@ -63,15 +84,27 @@ def _mesh_net(reference, method, direction, rows, cols, spacing, largest_compone
               help="With --surface: built-in profile name, or a CSV file with header 'r,h'.")
 @click.option("--method", type=click.Choice(["geodesic", "project"]),
               help="With REFERENCE (a triangle mesh, OBJ/PLY/STL/OFF): 'geodesic' traces "
-                   "geodesics orthogonally from the section of the mesh by the plane through "
-                   "its area centroid orthogonal to --direction (default direction: the "
-                   "longest principal axis); 'project' projects a planar grid onto the mesh "
-                   "along --direction (required). Both keep the largest rectangle of the grid "
-                   "that lies on the mesh. A closed mesh works: geodesics are cut at its extent "
-                   "along the direction; rays hit the side the direction points to.")
+                   "geodesics orthogonally from a base curve (--base); 'project' projects a "
+                   "planar grid onto the mesh along --direction (default: the mesh's overall "
+                   "normal). Both keep the largest rectangle of the grid that lies on the "
+                   "mesh, and never a folded or collapsed one. Without --base, --direction or "
+                   "--angle, init tries the principal directions and the boundary curves and "
+                   "keeps the net that covers most of the mesh (stderr and data.init.choice "
+                   "say which, and how much). A closed mesh works: geodesics are cut at its "
+                   "extent along the direction; rays hit the side the direction points to.")
+@click.option("--base", metavar="auto|section|boundary|bK",
+              help="--method geodesic: the base curve. 'section': the section by the plane "
+                   "through the area centroid orthogonal to --direction (default: the longest "
+                   "principal axis) turned by --angle; 'boundary': the boundary curve (the "
+                   "boundary loops cut at their corners) that covers most; 'b1', 'b2', ...: "
+                   "that boundary curve, longest first (-v lists them); 'auto' (default): "
+                   "sections and boundary curves, the best.")
 @click.option("--direction", metavar="x,y,z",
               help="Direction for --method: normal of the base plane (geodesic) or of the "
                    "projection (project).")
+@click.option("--angle", type=FiniteFloat(), metavar="DEG",
+              help="In-plane angle, degrees: geodesic: the base plane's normal turned about "
+                   "the mesh's normal axis; project: the grid turned about the direction.")
 @click.option("--from-quads", "from_quads", type=click.Path(path_type=Path),
               metavar="FILE.obj",
               help="Import a regular quad net from an OBJ file: the m×n grid is detected, the "
@@ -109,16 +142,18 @@ def _mesh_net(reference, method, direction, rows, cols, spacing, largest_compone
 @output_opt
 @force_opt
 @format_opt
-def init(reference, surface, profile, method, direction, from_quads, largest_component, extend,
-         rows, cols, spacing, span, twist, reference_out, units, output, force, fmt):
+@click.pass_context
+def init(ctx, reference, surface, profile, method, base, direction, angle, from_quads,
+         largest_component, extend, rows, cols, spacing, span, twist, reference_out, units,
+         output, force, fmt):
     """Make an initial m×n net (u-lines: the geodesics).
 
     \b
     dgpc init --surface revolution --profile NAME|FILE --rows M --cols N -o STEM
-    dgpc init MESH --method geodesic [--direction x,y,z] [--rows M] [--cols N|--spacing S]
-              [--extend F] -o STEM
-    dgpc init MESH --method project --direction x,y,z [--rows M] [--cols N|--spacing S]
-              [--extend F] -o STEM
+    dgpc init MESH --method geodesic [--base auto|section|boundary|bK] [--direction x,y,z]
+              [--angle DEG] [--rows M] [--cols N|--spacing S] [--extend F] -o STEM
+    dgpc init MESH --method project [--direction x,y,z] [--angle DEG] [--rows M]
+              [--cols N|--spacing S] [--extend F] -o STEM
     dgpc init --from-quads NET.obj [MESH] -o STEM
 
     With --surface the z axis is the axis of revolution and a CSV profile is resampled by arc
@@ -140,10 +175,14 @@ def init(reference, surface, profile, method, direction, from_quads, largest_com
             raise click.UsageError("--method needs a REFERENCE mesh")
         if cols is not None and spacing is not None:
             raise click.UsageError("give --cols or --spacing, not both")
-        if method == "project" and direction is None:
-            raise click.UsageError("--method project needs --direction x,y,z")
+        if method == "project" and base is not None:
+            raise click.UsageError("--base goes with --method geodesic")
+        if base not in (None, "auto", "section") and (direction is not None or angle is not None):
+            raise click.UsageError(f"--base {base} takes no --direction or --angle")
     if extend > 0 and not method:
         raise click.UsageError("--extend goes with REFERENCE and --method")
+    if (base or angle is not None) and not method:
+        raise click.UsageError("--base and --angle go with REFERENCE and --method")
     if (profile or reference_out) and not surface:
         raise click.UsageError("--profile and --reference-out go with --surface")
     d = parse_direction(direction)
@@ -159,10 +198,10 @@ def init(reference, surface, profile, method, direction, from_quads, largest_com
         if result.reference_obj is not None:
             files[reference_out] = result.reference_obj
     elif method:
-        net, mesh = _mesh_net(reference, method, d, rows, cols, spacing, largest_component,
-                              extend)
+        net, mesh = _mesh_net(ctx, reference, method, base, d, angle, rows, cols, spacing,
+                              largest_component, extend)
     else:
-        from dgpc_cli.stages.init_mesh import init_from_quads
+        from dgpc_cli.stages.init_quads import init_from_quads
 
         net = init_from_quads(from_quads)
         net.inputs["quads"] = file_input(from_quads, folder)

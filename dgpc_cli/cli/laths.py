@@ -19,6 +19,7 @@ from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.units import same_units
 from dgpc_cli.stages.laths import GAP, gridshell
+from dgpc_cli.stages.soundness import require_sound_net
 
 log = logging.getLogger(__name__)
 
@@ -52,6 +53,8 @@ def laths(net_a, net_b, gap, output, force, fmt):
             if p.exists():
                 raise DgpcError("already exists; use --force to overwrite", source=p)
     a, b = read_net(net_a), read_net(net_b)
+    require_sound_net(a.f, artifact_paths(net_a)[0])
+    require_sound_net(b.f, artifact_paths(net_b)[0])
     units = same_units([(str(artifact_paths(net_a)[0]), a.units),
                         (str(artifact_paths(net_b)[0]), b.units)])
     ref_a, ref_b = a.data.get("reference"), b.data.get("reference")

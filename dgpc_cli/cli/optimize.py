@@ -15,7 +15,7 @@ from dgpc_cli.core.solver import Schedule
 from dgpc_cli.core.solver.linear import BACKENDS
 from dgpc_cli.errors import DgpcError, NotConverged
 from dgpc_cli.geodesics.extension import fit_surface
-from dgpc_cli.io.artifact import artifact_paths, file_input, recorded_file
+from dgpc_cli.io.artifact import artifact_paths, file_input, recorded_file, resolve_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.handles import read_handles
 from dgpc_cli.io.mesh import load_mesh
@@ -25,21 +25,30 @@ from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.stages.inspect import summarize
 from dgpc_cli.stages.modes import MODES, RELAX, SOFT, describe_weights, mode_weights
 from dgpc_cli.stages.optimize import boundary_vertices, judge, optimize_net
+from dgpc_cli.stages.polish import polish_weights
 from dgpc_cli.tolerances import tol as TOL
 
 log = logging.getLogger(__name__)
 
 
-def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: str):
-    """The reference mesh: --reference, else the one the net records (fit needs one); only its
-    largest piece when the net was made with ``init --largest-component``."""
-    if reference is None and mode == "fit" and net.data.get("reference"):
-        reference = recorded_file(net.data["reference"], json_path, "data.reference")
+def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: str,
+               keep: bool = True):
+    """The reference mesh: --reference, else the one the net records unless ``keep`` is off
+    (--no-reference; fit needs one), checked against its recorded sha256; only its largest
+    piece when the net was made with ``init --largest-component``."""
+    if reference is None and keep and net.data.get("reference"):
+        record = net.data["reference"]
+        if isinstance(record, dict) and isinstance(record.get("path"), str) \
+                and not resolve_input(record, json_path).is_file():
+            raise DgpcError(f"data.reference: the reference it records, {record['path']}, is "
+                            "missing (give --reference MESH, or --no-reference to drop it)",
+                            source=json_path)
+        reference = recorded_file(record, json_path, "data.reference")
         log.info("using the reference recorded in %s: %s", json_path, reference)
     if reference is None:
         if mode == "fit":
             raise DgpcError("--mode fit needs a reference mesh (--reference MESH)",
-                            source="--reference")
+                            source="--no-reference" if not keep else "--reference")
         return None
     return load_mesh(reference, pieces=net.reference_pieces)
 
@@ -51,7 +60,11 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
                    "revolution: isometric to a surface of revolution (7); isometric: "
                    "isometric deformation by handles.")
 @click.option("--reference", type=click.Path(path_type=Path),
-              help="Reference triangle mesh (OBJ/PLY/STL/OFF) for the approximation term.")
+              help="Reference triangle mesh (OBJ/PLY/STL/OFF) for the approximation term "
+                   "[default: the one the net records].")
+@click.option("--no-reference", is_flag=True,
+              help="Drop the reference the net records: no approximation or boundary term, "
+                   "and the new net records none.")
 @click.option("--handles", type=click.Path(path_type=Path),
               help='Handles JSON: {"handles": [{"index": [u, v], "target": [x, y, z]} | '
                    '{"index": [u, v], "offset": [dx, dy, dz]}]}.')
@@ -60,8 +73,10 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
 @click.option("--weight", "weights", multiple=True, metavar="NAME=VALUE|NAME=A->B",
               help="Override a term's weight, or a schedule such as fairness=0.01->0 "
                    "(repeatable).")
-@click.option("--max-iter", type=click.IntRange(min=1), default=TOL.max_iter,
-              show_default=True, help="Iteration limit per step.")
+@click.option("--max-iter", type=click.IntRange(min=1), default=None,
+              help="Iteration limit of the whole run, handle steps and the final projection "
+                   f"onto the hard constraints included [default: {TOL.max_iter} for each "
+                   "step and for the projection].")
 @click.option("--tol", type=FiniteFloat(min=0, min_open=True), default=TOL.solver_R,
               show_default=True, help="Tolerance on the residual of the hard constraints "
                                       "(net scaled to mean edge length 1).")
@@ -79,8 +94,8 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
 @force_opt
 @format_opt
 @click.pass_context
-def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol, max_strain,
-             gpc_tol, backend, output, force, fmt):
+def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, max_iter, tol,
+             max_strain, gpc_tol, backend, output, force, fmt):
     """Optimize the net STEM with guided projection (paper §5) and write it to -o STEM2.
 
     Exit code 3 if the last step does not reach --tol, if the net is pleated, in revolution
@@ -92,10 +107,17 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
         schedules = mode_weights(mode, weights)
     except ValueError as err:
         raise click.BadParameter(str(err), ctx=ctx, param_hint="--weight") from None
+    if no_reference and reference is not None:
+        raise click.UsageError("give --reference or --no-reference, not both")
     json_path, _ = artifact_paths(stem)
     check_writable(output, force)
     net = read_net(stem)
-    mesh = _reference(net, json_path, reference, mode)
+    mesh = _reference(net, json_path, reference, mode, keep=not no_reference)
+    if mesh is None:  # the terms that need a reference are off, and the record says so
+        schedules.update({name: Schedule.constant(0.0) for name in ("approximation", "boundary")
+                          if name in schedules})
+    if mode == "fit":
+        schedules = polish_weights(net.f, schedules, weights)
     handle_ids = handle_targets = None
     mm = mm_per_unit(net.units)      # the stages compute in mm (dgpc_cli.io.units)
     if handles is not None:
@@ -132,8 +154,8 @@ def optimize(ctx, stem, mode, reference, handles, steps, weights, max_iter, tol,
     result = NetArtifact(
         f=from_mm(outcome.f, net.units), units=net.units,
         parameters={"mode": mode, "weights": describe_weights(schedules),
-                    "soft": list(SOFT[mode]), "steps": steps, "max_iter": max_iter, "tol": tol,
-                    "max_strain": max_strain, "gpc_tol": gpc_tol, "solver": backend,
+                    "soft": list(SOFT[mode]), "steps": steps, "max_iter": outcome.max_iter,
+                    "tol": tol, "max_strain": max_strain, "gpc_tol": gpc_tol, "solver": backend,
                     **net.reference_parameters()},
         inputs=inputs, data=data)
     outcome.status, outcome.message = judge(outcome, net.f_mm, mode=mode,

@@ -9,7 +9,7 @@ import click
 
 from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt, progressbar
-from dgpc_cli.errors import NotConverged
+from dgpc_cli.errors import DgpcError, NotConverged
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import read_net
@@ -21,9 +21,23 @@ from dgpc_cli.stages.planarize import (
     parse_strip_range,
     planarize_strips,
     strips_metrics,
+    trim_records,
 )
+from dgpc_cli.stages.soundness import require_sound_net
 
 log = logging.getLogger(__name__)
+
+
+def _outline(net, json_path):
+    """The reference the net records, for --trim; DgpcError naming --trim without one."""
+    from dgpc_cli.core.reference import ReferenceSurface
+    from dgpc_cli.stages.inspect import recorded_reference
+
+    mesh = recorded_reference(net, json_path)
+    if mesh is None:
+        raise DgpcError(f"--trim clips to the reference the net records, and {json_path} "
+                        "records none that is there", source="--trim")
+    return ReferenceSurface.from_mesh(mesh)
 
 
 @click.command("planarize-strips", short_help="Make every geodesic strip a strip of planar quads.")
@@ -35,37 +49,51 @@ log = logging.getLogger(__name__)
               show_default=True,
               help="Rows where the strip normals turn by less than this (radians per row) are "
                    "flat: their rulings are averaged from the nearest non-flat rows.")
+@click.option("--trim", is_flag=True,
+              help="Clip every strip to the outline of the reference the net records (a net "
+                   "made with init --extend runs past it): the parts end where the reference "
+                   "ends; parts shorter than one quad are dropped (stderr says which).")
 @output_opt
 @force_opt
 @format_opt
 @click.pass_context
-def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, output, force, fmt):
+def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, output, force, fmt):
     """Turn the geodesic strips of the net STEM into discrete developable strips (paper §6.2.4).
 
     Rulings follow the cross products N × N1 of neighbouring normals (averaged across flat
     parts); the plane of each ruling and the normal, through the midpoint of the v-edge, cuts
     the two boundary geodesics. Strips whose quads stay measurably non-planar get a short
     guided-projection polish. Writes the strips artifact -o STEM2 (one OBJ object per strip,
-    ids S-v00, S-v01, ...).
+    ids S-v00, S-v01, ...). With --trim each strip's record lists its parts inside the
+    reference's outline (data.strips[].trim); unfold develops those.
     """
     json_path, _ = artifact_paths(stem)
     check_writable(output, force)
     net = read_net(stem)
+    require_sound_net(net.f, json_path, gpc=False)
     m, n = net.shape
     columns = parse_strip_range(strip_range, n)
+    outline = _outline(net, json_path) if trim else None
     with progressbar(ctx, len(columns), "planarize strips") as bar:
         strips = [s.in_units(net.units) for s in
                   planarize_strips(net.f_mm, columns, flat_angle=flat_angle,
                                    progress=bar.update)]
+    records = [s.record() for s in strips]
+    if outline is not None:
+        trims, notes = trim_records(strips, outline)
+        for record, cut in zip(records, trims, strict=True):
+            record["trim"] = cut
+        for note in notes:
+            log.warning("%s", note)
     out_json, _ = artifact_paths(output)
     polished = [s for s in strips if s.polish.get("applied")]
     failed = [s.id for s in polished if s.polish.get("status") != "converged"]
     crossed = [s.id for s in strips if not s.rulings_ordered]
     art = StripsArtifact(
-        geometry=[(s.A, s.B) for s in strips], records=[s.record() for s in strips],
+        geometry=[(s.A, s.B) for s in strips], records=records,
         source_shape=(m, n), units=net.units,
         parameters={"strips": [columns[0], columns[-1]], "flat_angle": flat_angle,
-                    "polish_above": POLISH_ABOVE},
+                    "polish_above": POLISH_ABOVE, "trim": trim},
         inputs={"net": file_input(json_path, out_json.resolve().parent)},
         metrics=strips_metrics(strips),
         status={"polished": len(polished), "polish_not_converged": failed,

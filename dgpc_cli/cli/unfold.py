@@ -15,6 +15,7 @@ from dgpc_cli.io.flat import FlatArtifact, csv_path, flat_files
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.strips import read_strips
 from dgpc_cli.io.units import mm_per_unit, to_mm
+from dgpc_cli.stages.soundness import require_sound_strips
 from dgpc_cli.stages.unfold import (
     CONGRUENCE_TOL,
     STAGGER_FRACTION,
@@ -58,13 +59,15 @@ def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, output, force
     json_path, _ = artifact_paths(stem)
     check_writable(output, force, csv_path(output))
     strips = read_strips(stem)
+    require_sound_strips(strips.geometry, [r["id"] for r in strips.records], json_path)
     mm = mm_per_unit(strips.units)       # computed in mm (dgpc_cli.io.units)
     parts, classes, joints = unfold_strips(
         [(to_mm(A, strips.units), to_mm(B, strips.units)) for A, B in strips.geometry],
         [r["id"] for r in strips.records], [r["v"] for r in strips.records],
         congruence_tol=congruence_tol, mirror_ok=mirror_ok,
         stock_length=None if stock_length is None else stock_length * mm,
-        stagger=None if stagger is None else stagger * mm, source=json_path)
+        stagger=None if stagger is None else stagger * mm, source=json_path,
+        trims=[r.get("trim") for r in strips.records])
     parts, classes, joints = records_in_units(parts, classes, joints, strips.units)
     out_json, _ = artifact_paths(output)
     art = FlatArtifact(

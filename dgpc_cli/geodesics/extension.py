@@ -29,6 +29,16 @@ RING_WIDTH = 1.0
 #: The most vertices the rings of a continuation may add (``init --extend`` against the
 #: mesh's boundary: rings one boundary edge wide out to F × the diagonal).
 MAX_RING_VERTICES = 2_000_000
+#: A boundary face lower than this fraction of its boundary edge, or a boundary edge shorter
+#: than this fraction of the mean, gives no outward direction of its own.
+SLIVER = 1e-2
+#: Where the boundary turns by more than this (radians) at a vertex, a corner, the rings are
+#: mitred sharply; elsewhere they follow the averaged outward direction.
+CORNER = np.radians(40.0)
+#: Arc length (in mean boundary edges) either side of a vertex over which the outward
+#: direction of a smooth stretch is averaged, at the ends of edges shorter than SHORT (in mean
+#: boundary edges).
+SMOOTHING, SHORT = 2.0, 0.5
 #: A net traced out to ``init --extend F`` is fitted to the mesh continued to this many times
 #: F, so its rim never meets a boundary (where the closest point would pull it back).
 FIT_REACH = 2.0
@@ -56,6 +66,92 @@ def outer_loop(vertices: np.ndarray, edges: np.ndarray) -> np.ndarray:
     return label[edges[:, 0]] == np.argmax(per_loop)
 
 
+def outward_normals(V: np.ndarray, F: np.ndarray, edges: np.ndarray,
+                    face_of: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Unit outward directions ``(s, 3)`` of the boundary edges in their faces' tangent planes
+    (right of a → b), and the unit surface normals ``(s, 3)`` they were taken in. A sliver
+    face (height below :data:`SLIVER` of its boundary edge, as a mesh cut by a plane through
+    its vertices has) has no reliable normal: the area-weighted normal at the edge's ends
+    stands in; an edge shorter than :data:`SLIVER` of the mean has no reliable direction: it
+    takes the outward direction of the edge before it."""
+    normals, area = face_normals(V, F)
+    along = V[edges[:, 1]] - V[edges[:, 0]]
+    length = np.linalg.norm(along, axis=1)
+    nrm = normals[face_of]
+    thin = 2.0 * area[face_of] < SLIVER * length ** 2
+    if thin.any():
+        vn = np.zeros_like(V)
+        np.add.at(vn, F.ravel(), np.repeat(normals * area[:, None], 3, axis=0))
+        en = vn[edges[:, 0]] + vn[edges[:, 1]]
+        nrm = np.where(thin[:, None], en / np.linalg.norm(en, axis=1, keepdims=True), nrm)
+    out = np.cross(along, nrm)
+    out /= np.maximum(np.linalg.norm(out, axis=1, keepdims=True), 1e-300)
+    tiny = length < SLIVER * length.mean()
+    if tiny.any():
+        before = np.full(int(edges.max()) + 1, -1)
+        before[edges[:, 1]] = np.arange(len(edges))
+        prev = before[edges[:, 0]]                             # the edge ending where e starts
+        for _ in range(int(tiny.sum())):                       # chains of tiny edges
+            take = tiny & (prev >= 0) & ~tiny[np.maximum(prev, 0)]
+            if not take.any():
+                break
+            out[take], nrm[take] = out[prev[take]], nrm[prev[take]]
+            tiny = tiny & ~take
+    return out, nrm
+
+
+def chained(edges: np.ndarray) -> list[np.ndarray]:
+    """The directed boundary edges ``(s, 2)`` chained into loops: lists of edge indices in
+    order (one walk per loop; an edge follows the one that ends where it starts)."""
+    follow = np.full(int(edges.max()) + 1, -1, dtype=np.int64)
+    follow[edges[:, 0]] = np.arange(len(edges))
+    seen = np.zeros(len(edges), dtype=bool)
+    loops = []
+    for first in range(len(edges)):  # one walk per loop, along its edges
+        if seen[first]:
+            continue
+        order, e = [], first
+        while e >= 0 and not seen[e]:
+            seen[e] = True
+            order.append(e)
+            e = follow[edges[e, 1]]
+        loops.append(np.asarray(order, dtype=np.int64))
+    return loops
+
+
+def _along_loop_average(edges, length, out, window, smooth_start):
+    """For the start vertex of every boundary edge: the mean ``(s, 3)`` (normalized) of the
+    edges' ``out``, a function of arc length constant on each edge, over the arc length within
+    ``window`` of the vertex, never across a corner (``smooth_start[e]`` False: a corner at the
+    start of e). The integral is interpolated from its values at the edge ends, so the mean
+    moves continuously with the vertex."""
+    result = np.zeros_like(out)
+    for chain in chained(edges):  # one pass per loop (a handful)
+        corners = np.flatnonzero(~smooth_start[chain])
+        if corners.size:
+            chain = np.roll(chain, -int(corners[0]))   # start the walk at a corner
+        L, o = length[chain], out[chain]
+        ends = np.concatenate([[0.0], np.cumsum(L)])
+        total = ends[-1]
+        s = ends[:-1]                                  # the start vertex of each edge
+        if corners.size:
+            run = np.cumsum(~smooth_start[chain]) - 1
+            first = ends[np.searchsorted(run, run, side="left")]
+            last = ends[np.searchsorted(run, run, side="right")]
+            knots, weights = ends, L
+        else:                                          # a closed smooth loop: wrap around
+            first, last = s - total, s + total
+            knots = np.concatenate([ends[:-1] - total, ends[:-1], ends + total])
+            weights, o = np.tile(L, 3), np.tile(o, (3, 1))
+        integral = np.concatenate([np.zeros((1, 3)), np.cumsum(weights[:, None] * o, axis=0)])
+        a, b = np.maximum(s - window, first), np.minimum(s + window, last)
+        at = [np.stack([np.interp(x, knots, integral[:, j]) for j in range(3)], axis=1)
+              for x in (a, b)]
+        mean = (at[1] - at[0]) / np.maximum(b - a, 1e-300)[:, None]
+        result[chain] = mean / np.maximum(np.linalg.norm(mean, axis=1, keepdims=True), 1e-300)
+    return result
+
+
 def folded_faces(vertices: np.ndarray, faces: np.ndarray, n_original: int) -> int:
     """How many of the faces added by :func:`extend_mesh` (those after the first
     ``n_original``) are turned over against the boundary face they grew from: at a concave
@@ -66,8 +162,9 @@ def folded_faces(vertices: np.ndarray, faces: np.ndarray, n_original: int) -> in
     edges, face_of = boundary_edges(F[:n_original])
     outer = outer_loop(V, edges)
     edges, face_of = edges[outer], face_of[outer]
+    _, grown_from = outward_normals(V, F[:n_original], edges, face_of)
     added = normals[n_original:].reshape(2, -1, len(edges), 3)       # (tri, ring, edge, 3)
-    return int((np.einsum("trsj,sj->trs", added, normals[face_of]) <= 0).sum())
+    return int((np.einsum("trsj,sj->trs", added, grown_from) <= 0).sum())
 
 
 def extend_mesh(vertices: np.ndarray, faces: np.ndarray,
@@ -82,21 +179,32 @@ def extend_mesh(vertices: np.ndarray, faces: np.ndarray,
         return V.copy(), F.copy()
     keep = outer_loop(V, edges)
     edges, face_of = edges[keep], face_of[keep]
-    normals, _ = face_normals(V, F)
+    out, _ = outward_normals(V, F, edges, face_of)
     along = V[edges[:, 1]] - V[edges[:, 0]]
-    out = np.cross(along, normals[face_of])                     # right of a→b: outwards
-    out /= np.linalg.norm(out, axis=1, keepdims=True)
     loop = np.unique(edges)                                     # boundary vertices, sorted
     slot = np.searchsorted(loop, edges)                         # (s, 2) positions in loop
     n_in = np.zeros((len(loop), 3))
     n_out = np.zeros((len(loop), 3))
     n_in[slot[:, 1]] = out                                      # edge arriving at the vertex
     n_out[slot[:, 0]] = out                                     # edge leaving it
+    length = np.linalg.norm(along, axis=1)
     # the mitre m with m·n_in = m·n_out = 1 (offset edges stay parallel), capped at corners
-    mitre = (n_in + n_out) / (1.0 + np.einsum("ij,ij->i", n_in, n_out))[:, None]
+    cos = np.einsum("ij,ij->i", n_in, n_out)
+    mitre = (n_in + n_out) / (1.0 + cos)[:, None]
     size = np.linalg.norm(mitre, axis=1, keepdims=True)
     mitre *= np.minimum(1.0, MAX_MITRE / np.maximum(size, 1e-300))
-    width = float(np.mean(np.linalg.norm(along, axis=1)))
+    # at the ends of a short edge on a smooth stretch the direction is the edges' outward field
+    # averaged over SMOOTHING mean edges of arc length: facet normals differ from edge to edge,
+    # and the rings over a short edge whose ends took them as they are would fold a short way
+    # out (elsewhere the mitre keeps the offset edges parallel)
+    width = float(np.mean(length))
+    smooth = cos > np.cos(CORNER)
+    short = np.zeros(len(loop), dtype=bool)
+    short[slot[length < SHORT * width].ravel()] = True
+    averaged = _along_loop_average(edges, length, out, SMOOTHING * width, smooth[slot[:, 0]])
+    field = np.zeros((len(loop), 3))
+    field[slot[:, 0]] = averaged
+    mitre = np.where((smooth & short)[:, None], field, mitre)
     rings = max(1, int(np.ceil(distance / (RING_WIDTH * width))))
     step = distance / rings
     k = np.arange(1, rings + 1)[:, None, None]

@@ -35,9 +35,11 @@ def largest_band(t: np.ndarray, ahead: np.ndarray, behind: np.ndarray):
     return i, j, float(A[i, j]), float(B[i, j])
 
 
-def largest_rectangle(mask: np.ndarray):
+def largest_rectangle(mask: np.ndarray, count: str = "spanned"):
     """Largest axis-aligned block of True entries of ``mask (R, C)`` with at least 2 rows and
-    2 columns, by spanned area ``(rows - 1)(cols - 1)``: ``(r0, r1, c0, c1)`` inclusive, or None.
+    2 columns, by spanned area ``(rows - 1)(cols - 1)`` (a mask of grid points), or with
+    ``count="entries"`` by ``rows · cols`` (a mask of grid cells): ``(r0, r1, c0, c1)``
+    inclusive, or None.
 
     Histogram method: ``H[r, c]`` counts the consecutive True entries ending at row r; for each
     row the best column range comes from the range minima of ``H[r]`` (vectorized per row).
@@ -54,7 +56,11 @@ def largest_rectangle(mask: np.ndarray):
     best, where = 0.0, None
     for r in range(R):
         h = _range_min(H[r].astype(float))
-        area = np.where(width > 0, width * np.maximum(h - 1, 0), 0.0)
+        if count == "entries":
+            ok = (width > 0) & (h >= 2) & np.isfinite(h)
+            area = np.where(ok, (width + 1) * np.where(ok, h, 0.0), 0.0)
+        else:
+            area = np.where(width > 0, width * np.maximum(h - 1, 0), 0.0)
         k = int(np.argmax(area))
         if area.flat[k] > best:
             i, j = divmod(k, C)

@@ -120,7 +120,9 @@ class FlatArtifact:
 def _obj_bytes(parts: list) -> bytes:
     return format_parts_obj(f"flat parts ({len(parts)}), developed strips in the plane z = 0",
                             [(p["id"], np.asarray(p["geodesics"][0], float),
-                              np.asarray(p["geodesics"][1], float)) for p in parts])
+                              np.asarray(p["geodesics"][1], float)) for p in parts],
+                            outlines={p["id"]: (p["outline"], p["score"]) for p in parts
+                                      if p.get("trimmed")})
 
 
 def csv_path(stem: str | Path) -> Path:
@@ -159,6 +161,14 @@ def _check_part_points(parts: list[dict], json_path: Path) -> None:
                                 f"{coordinate_problem(points[bad[0]])}", source=json_path)
 
 
+def _obj_vertices(part: dict) -> int:
+    """Vertices of a part's OBJ object: 2 per row, or for a part trimmed to the reference's
+    outline those of its outline and score lines."""
+    if part.get("trimmed"):
+        return len(part["outline"]) + sum(len(line) for line in part["score"])
+    return 2 * len(part["geodesics"][0])
+
+
 def read_flat(stem: str | Path) -> FlatArtifact:
     """Read and validate a flat artifact: envelope, schema, the OBJ's hash, and the classes'
     consistency with the parts (every part in exactly one class, quantities match)."""
@@ -166,8 +176,8 @@ def read_flat(stem: str | Path) -> FlatArtifact:
     doc = load_envelope(json_path, KIND)
     data = doc["data"]
     obj = parse_obj(read_obj_checked(json_path, obj_path, data["obj_sha256"]), obj_path)
-    check_obj_objects(obj, [(p["id"], 2 * len(p["geodesics"][0])) for p in data["parts"]],
-                      obj_path, "data.parts")
+    check_obj_objects(obj, [(p["id"], _obj_vertices(p)) for p in data["parts"]], obj_path,
+                      "data.parts")
     for key, record in data["files"].items():
         field = f"data.files.{key}"
         read_listed(listed_path(record["path"], json_path, field), record["sha256"], json_path,

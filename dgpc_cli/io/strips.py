@@ -27,15 +27,33 @@ from .units import DEFAULT_UNITS, stored
 KIND = "strips"
 
 
-def format_parts_obj(title: str, parts: list[tuple[str, np.ndarray, np.ndarray]]) -> bytes:
+def format_parts_obj(title: str, parts: list[tuple[str, np.ndarray, np.ndarray]],
+                     outlines: dict | None = None) -> bytes:
     """OBJ bytes of quad strips ``(name, A (m, d), B (m, d))`` (d = 2 gives z = 0): one object
     per strip, vertices A_0 B_0 A_1 B_1 …, quads A_u A_(u+1) B_(u+1) B_u, lines A_u B_u.
+    A part named in ``outlines`` (``name → (outline (k, 2), score lines)``, a strip trimmed to
+    the reference's outline) is drawn as its closed outline and its score lines instead.
     Floats as ``repr`` (exact, deterministic)."""
     lines = [f"# dgpc {__version__}", f"# {title}",
              "# per object: vertices A_0 B_0 A_1 B_1 ..., quads A_u A_u+1 B_u+1 B_u, "
-             "lines A_u B_u"]
+             "lines A_u B_u (a trimmed part: its outline and score lines)"]
     base = 1
+    outlines = outlines or {}
     for name, A, B in parts:
+        if name in outlines:
+            outline, score = outlines[name]
+            pts = [np.asarray(outline, float)] + [np.asarray(s, float) for s in score]
+            lines.append(f"o {name}")
+            for p in pts:
+                lines += [f"v {x!r} {y!r} 0.0" for x, y in p.tolist()]
+            k = len(pts[0])
+            lines.append("l " + " ".join(str(base + i) for i in [*range(k), 0]))
+            start = base + k
+            for p in pts[1:]:
+                lines.append("l " + " ".join(str(start + i) for i in range(len(p))))
+                start += len(p)
+            base = start
+            continue
         grid = np.stack([A, B], axis=1).reshape(-1, A.shape[1])
         if grid.shape[1] == 2:
             grid = np.concatenate([grid, np.zeros((len(grid), 1))], axis=1)

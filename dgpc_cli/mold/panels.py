@@ -40,7 +40,8 @@ def block_max(a: np.ndarray, size: int) -> np.ndarray:
 
 
 def _relative(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return np.abs(a - b) / b
+    with np.errstate(divide="ignore", invalid="ignore"):      # a collapsed edge: b = 0
+        return np.abs(a - b) / b
 
 
 def quad_isometry_error(f: np.ndarray, mold: np.ndarray) -> np.ndarray:

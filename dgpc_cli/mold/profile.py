@@ -137,7 +137,8 @@ class Meridian:
 def admissible_sine(d: np.ndarray, l: np.ndarray) -> tuple[float, int]:  # noqa: E741 - the paper's l(u)
     """``(s_min, u)``: x(u) of §4.2.2 is real for every u iff sin(π/N) ≥ s_min = max_u
     |d(u+1) − d(u)| / (2 l(u)); u is the row where the maximum is reached."""
-    ratio = np.abs(np.diff(d)) / (2.0 * l)
+    with np.errstate(divide="ignore", invalid="ignore"):      # a collapsed row: l(u) = 0
+        ratio = np.abs(np.diff(d)) / (2.0 * l)
     u = int(np.argmax(ratio))
     return float(ratio[u]), u
 

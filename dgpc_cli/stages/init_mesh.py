@@ -1,25 +1,31 @@
 """``dgpc init`` on a reference triangle mesh (SPEC §5): geodesic parallel coordinates traced
-from a base curve, a planar grid projected along a direction, or an imported quad net.
+from a base curve, or a planar grid projected along a direction.
 
 ``--method geodesic`` follows the smooth definition of geodesic parallel coordinates (paper
 Def. 2.1, §2.1): the u-lines are geodesics shot orthogonally from a base curve (the section of
-the mesh by the plane through its area centroid orthogonal to the direction), sampled at equal
-arc length, so the v-lines are geodesic parallels and ``optimize`` only polishes (§3.2 Fig. 8,
-§6.2.5: the paper needs "a sensible initial guess"). Geodesics that leave the mesh are trimmed
-to the largest rectangle of the grid whose points all lie on the mesh.
+the mesh by the plane through its area centroid orthogonal to the direction, or a boundary
+curve), sampled at equal arc length, so the v-lines are geodesic parallels and ``optimize``
+only polishes (§3.2 Fig. 8, §6.2.5: the paper needs "a sensible initial guess"). Geodesics that
+leave the mesh are trimmed to the largest rectangle of the grid whose points all lie on the
+mesh.
+
+Both builders return a :class:`MeshGrid`: the net, the parameters of its rows and columns, and
+how to make it again over a smaller rectangle of them (``stages.init_choice`` shrinks a
+degenerate net that way).
 """
 
 from __future__ import annotations
 
 import logging
 import math
-from pathlib import Path
+from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.geodesics.rectangle import largest_band, largest_rectangle
-from dgpc_cli.geodesics.section import plane_section, sample_curve
+from dgpc_cli.geodesics.section import SectionCurve, plane_section, sample_curve
 from dgpc_cli.geodesics.tracing import (
     MeshGeodesics,
     face_normals,
@@ -27,10 +33,8 @@ from dgpc_cli.geodesics.tracing import (
     principal_frame,
     sample_geodesic,
 )
-from dgpc_cli.io.coordinates import bad_rows, coordinate_problem
 from dgpc_cli.io.mesh import ReferenceMesh
 from dgpc_cli.io.net import NetArtifact
-from dgpc_cli.metrics.residuals import gpc_angle_defect_max
 from dgpc_cli.stages.net_size import check_net_size
 
 log = logging.getLogger(__name__)
@@ -94,6 +98,13 @@ def _check_size(cols: int | None, rows: int | None, spacing: float | None, acros
                    else "use fewer --rows or --cols")
 
 
+def rotated(d: np.ndarray, axis: np.ndarray, degrees: float) -> np.ndarray:
+    """``d (3,)`` turned by ``degrees`` about the unit ``axis`` (Rodrigues)."""
+    a = math.radians(degrees)
+    return (d * math.cos(a) + np.cross(axis, d) * math.sin(a)
+            + axis * float(axis @ d) * (1 - math.cos(a)))
+
+
 def _base_curve(mesh: ReferenceMesh, centre, direction):
     pieces = plane_section(mesh.vertices, mesh.faces, centre, direction)
     if not pieces or pieces[0].length <= 0:
@@ -131,78 +142,137 @@ def _refine_end(curve, normals, tracer, reach, t_in, t_out, A, B, steps=REFINE_S
     return t_in, A, B
 
 
-def init_geodesic(mesh: ReferenceMesh, *, direction=None, rows: int | None = None,
-                  cols: int | None = None, spacing: float | None = None) -> NetArtifact:
+@dataclass
+class MeshGrid:
+    """A net made on a mesh: ``net``, the parameter of every row ``u (m,)`` and column
+    ``v (n,)`` (arc lengths along the geodesics and the base curve, or plane coordinates), a
+    ``label`` for messages (``"section 90°"``, ``"boundary b2"``), ``remake(u0, u1, v0, v1)``
+    that makes the net again over that rectangle of the parameters (same --rows/--cols or
+    --spacing settings), and whether the net is meant to be gpc already (``traced``: geodesics
+    traced on the mesh; a projected grid is not, ``optimize --mode fit`` makes it so)."""
+
+    net: NetArtifact
+    u: np.ndarray
+    v: np.ndarray
+    label: str
+    remake: Callable[[float, float, float, float], MeshGrid]
+    traced: bool = True
+
+
+class _Fan:
+    """Geodesics shot orthogonally from a base ``curve`` on ``mesh`` (tracing state)."""
+
+    def __init__(self, mesh: ReferenceMesh, curve: SectionCurve, reach: float):
+        self.mesh, self.curve, self.reach = mesh, curve, reach
+        self.normals, _ = face_normals(mesh.vertices, mesh.faces)
+        self.tracer = MeshGeodesics(mesh.vertices, mesh.faces)
+
+    def band(self, want: int | None):
+        """Columns ``t0..t1`` on the base curve and the geodesic range ``[-B, A]`` of the
+        largest rectangle on the mesh, found on a probing fan and refined at its ends; and the
+        number of probe columns."""
+        curve, L = self.curve, self.curve.length
+        probe = int(np.clip(PROBE_FACTOR * (want or DEFAULT_COLS), PROBE_MIN, PROBE_MAX))
+        lo, hi = (0.0, L * (1 - 1.0 / probe)) if curve.closed else (END_INSET * L,
+                                                                    (1 - END_INSET) * L)
+        t_probe = np.linspace(lo, hi, probe)
+        pts, fcs, u = _base_seeds(curve, t_probe, self.normals)
+        _, _, ahead, behind = self.tracer.fan(pts, fcs, u, self.reach)
+        band = largest_band(t_probe, ahead, behind)
+        if band is None:
+            raise DgpcError("no geodesic from the base curve stays on the mesh",
+                            source=self.mesh.path)
+        i, j, A, B = band
+        t0, t1 = float(t_probe[i]), float(t_probe[j])
+        # push each end of the band out towards the next probe column as far as its geodesic
+        # still spans [-B, A] (bisection): the net then reaches the mesh's boundary closely
+        if i > 0:
+            t0, A, B = _refine_end(curve, self.normals, self.tracer, self.reach, t0,
+                                   float(t_probe[i - 1]), A, B)
+        if j < probe - 1:
+            t1, A, B = _refine_end(curve, self.normals, self.tracer, self.reach, t1,
+                                   float(t_probe[j + 1]), A, B)
+        return t0, t1, A, B, probe
+
+    def net(self, t0, t1, s0, s1, rows, cols, spacing):
+        """Columns at ``t0..t1`` (``cols`` of them or at ``spacing``), their geodesics sampled at
+        ``rows`` common arc lengths in ``[s0, s1]`` (default: square quads); ``(f, s, t)``."""
+        want = cols if cols is not None else (DEFAULT_COLS if spacing is None else None)
+        _check_size(want, rows, spacing, t1 - t0, s1 - s0)
+        t = _positions(t0, t1, want, spacing)
+        _check_count(len(t), "columns", "--spacing")
+        pts, fcs, u = _base_seeds(self.curve, t, self.normals)
+        forward, backward, ahead, behind = self.tracer.fan(pts, fcs, u, self.reach)
+        s0, s1 = max(s0, -float(behind.min())), min(s1, float(ahead.min()))
+        if s1 - s0 <= 0:
+            raise DgpcError("the geodesics from the base curve leave the mesh at once",
+                            source=self.mesh.path)
+        if rows is None and spacing is None:
+            rows = max(3, int(round((s1 - s0) / ((t1 - t0) / (len(t) - 1)))) + 1)
+        s = _positions(s0, s1, rows, spacing if rows is None else None)
+        _check_count(len(s), "rows", "--spacing")
+        f = np.stack([sample_geodesic(fw, bw, s) for fw, bw in zip(forward, backward,
+                                                                     strict=True)], axis=1)
+        return f, s, t
+
+
+def init_geodesic(mesh: ReferenceMesh, *, base: SectionCurve | None = None,
+                  base_name: str | None = None, direction=None, angle: float = 0.0,
+                  rows: int | None = None, cols: int | None = None,
+                  spacing: float | None = None) -> MeshGrid:
     """A net of geodesic parallel coordinates on ``mesh`` (SPEC §5 ``--method geodesic``).
 
-    Base curve: the longest piece of the section by the plane through the area centroid
-    orthogonal to ``direction`` (default: the longest principal axis). From ``n`` points at
-    equal arc length on it, geodesics are traced both ways orthogonally to it (potpourri3d);
-    ``m`` points at equal arc length (a common step) on each. Columns and the geodesic range are
-    the largest rectangle of the grid on the mesh, found on a finer probing fan. ``rows``
-    default: square quads; ``cols`` default: :data:`DEFAULT_COLS`; ``spacing`` (model units)
-    replaces ``cols`` (and ``rows`` when that is not given). On a closed mesh the geodesics are
-    cut at the mesh's extent along the direction, each side of the plane.
+    Base curve: ``base`` (a boundary curve named ``base_name``, oriented with the mesh on its
+    right, see :mod:`dgpc_cli.geodesics.boundary`), else the longest piece of the section by
+    the plane through the area centroid orthogonal to ``direction`` (default: the longest
+    principal axis) turned by ``angle`` degrees about the normal axis (the shortest principal
+    axis). From ``n`` points at equal arc length on it, geodesics are traced both ways
+    orthogonally to it (potpourri3d); ``m`` points at equal arc length (a common step) on each.
+    Columns and the geodesic range are the largest rectangle of the grid on the mesh, found on
+    a finer probing fan. ``rows`` default: square quads; ``cols`` default:
+    :data:`DEFAULT_COLS`; ``spacing`` (model units) replaces ``cols`` (and ``rows`` when that is
+    not given). On a closed mesh the geodesics are cut at the mesh's extent along the
+    direction, each side of the plane.
     """
     V, F = mesh.vertices, mesh.faces
     centre, axes = principal_frame(V, F)
-    d = axes[:, 0] if direction is None else _unit(direction)
-    curve = _base_curve(mesh, centre, d)
-    normals, _ = face_normals(V, F)
-    heights = (V - centre) @ d
-    if _has_boundary(F):
+    record: dict = {"method": "geodesic", "centroid": centre.tolist()}
+    if base is None:
+        d = axes[:, 0] if direction is None else _unit(direction)
+        if angle:
+            d = rotated(d, axes[:, 2], angle)
+        curve = _base_curve(mesh, centre, d)
+        label = f"section {angle:g}°" if direction is None else "section"
+        record.update(base="section", direction=d.tolist(), angle=angle)
+    else:
+        curve, d = base, None
+        label = f"boundary {base_name}"
+        record.update(base="boundary", base_name=base_name)
+    if _has_boundary(F) or d is None:
         reach = 4.0 * mesh.bbox_diagonal
     else:
+        heights = (V - centre) @ d
         reach = float(max(heights.max(), -heights.min()))
         log.info("closed mesh: geodesics cut at %.6g each side of the base plane", reach)
-    L = curve.length
-    tracer = MeshGeodesics(V, F)
-
+    fan = _Fan(mesh, curve, reach)
     want = cols if cols is not None else (DEFAULT_COLS if spacing is None else None)
-    probe = int(np.clip(PROBE_FACTOR * (want or DEFAULT_COLS), PROBE_MIN, PROBE_MAX))
-    lo, hi = (0.0, L * (1 - 1.0 / probe)) if curve.closed else (END_INSET * L,
-                                                                (1 - END_INSET) * L)
-    t_probe = np.linspace(lo, hi, probe)
-    pts, fcs, u = _base_seeds(curve, t_probe, normals)
-    _, _, ahead, behind = tracer.fan(pts, fcs, u, reach)
-    band = largest_band(t_probe, ahead, behind)
-    if band is None:
-        raise DgpcError("no geodesic from the base curve stays on the mesh", source=mesh.path)
-    i, j, A, B = band
-    t0, t1 = float(t_probe[i]), float(t_probe[j])
-    # push each end of the band out towards the next probe column as far as its geodesic still
-    # spans [-B, A] (bisection): the net then reaches the mesh's boundary closely
-    if i > 0:
-        t0, A, B = _refine_end(curve, normals, tracer, reach, t0, float(t_probe[i - 1]),
-                               A, B)
-    if j < probe - 1:
-        t1, A, B = _refine_end(curve, normals, tracer, reach, t1, float(t_probe[j + 1]),
-                               A, B)
-    _check_size(want, rows, spacing, t1 - t0, A + B)
-    t = _positions(t0, t1, want, spacing)
-    _check_count(len(t), "columns", "--spacing")
+    t0, t1, A, B, probe = fan.band(want)
+    record.update(base_curve_length=curve.length, base_curve_closed=curve.closed,
+                  probe_columns=probe)
+    parameters = {"method": "geodesic", "direction": None if d is None else d.tolist(),
+                  "rows": rows, "cols": cols, "spacing": spacing}
 
-    pts, fcs, u = _base_seeds(curve, t, normals)
-    forward, backward, ahead, behind = tracer.fan(pts, fcs, u, reach)
-    A, B = min(A, float(ahead.min())), min(B, float(behind.min()))
-    if A + B <= 0:
-        raise DgpcError("the geodesics from the base curve leave the mesh at once",
-                        source=mesh.path)
-    if rows is None and spacing is None:
-        rows = max(3, int(round((A + B) / ((t1 - t0) / (len(t) - 1)))) + 1)
-    s = _positions(-B, A, rows, spacing if rows is None else None)
-    _check_count(len(s), "rows", "--spacing")
-    f = np.stack([sample_geodesic(fw, bw, s) for fw, bw in zip(forward, backward,
-                                                                 strict=True)], axis=1)
-    log.info("geodesic init: base curve %.6g long (columns at %.6g..%.6g), geodesics "
-             "%.6g..%.6g, net %d x %d", L, t0, t1, -B, A, *f.shape[:2])
-    data = {"init": {"method": "geodesic", "direction": d.tolist(),
-                     "centroid": centre.tolist(), "base_curve_length": L,
-                     "base_curve_closed": curve.closed, "base_curve_range": [t0, t1],
-                     "geodesic_range": [-B, A], "probe_columns": probe}}
-    parameters = {"method": "geodesic", "direction": d.tolist(), "rows": rows, "cols": cols,
-                  "spacing": spacing}
-    return NetArtifact(f=f, parameters=parameters, data=data)
+    def make(s0, s1, c0, c1) -> MeshGrid:
+        f, s, t = fan.net(c0, c1, s0, s1, rows, cols, spacing)
+        log.info("geodesic init (%s): base curve %.6g long (columns at %.6g..%.6g), "
+                 "geodesics %.6g..%.6g, net %d x %d", label, curve.length, t[0], t[-1], s[0],
+                 s[-1], *f.shape[:2])
+        data = {"init": {**record, "base_curve_range": [float(t[0]), float(t[-1])],
+                         "geodesic_range": [float(s[0]), float(s[-1])]}}
+        return MeshGrid(NetArtifact(f=f, parameters=dict(parameters), data=data), s, t, label,
+                        make)
+
+    return make(-B, A, t0, t1)
 
 
 def _cast(mesh: ReferenceMesh, tree, origins: np.ndarray, d: np.ndarray):
@@ -221,22 +291,27 @@ def _cast(mesh: ReferenceMesh, tree, origins: np.ndarray, d: np.ndarray):
     return origins + t[:, None] * dirs, ok
 
 
-def init_project(mesh: ReferenceMesh, *, direction, rows: int | None = None,
-                 cols: int | None = None, spacing: float | None = None) -> NetArtifact:
+def init_project(mesh: ReferenceMesh, *, direction=None, angle: float = 0.0,
+                 rows: int | None = None, cols: int | None = None,
+                 spacing: float | None = None) -> MeshGrid:
     """A planar grid projected onto ``mesh`` along ``direction`` (SPEC §5 ``--method project``):
     rays along −direction from above the mesh, first hits (the side the direction points to).
 
-    The grid lies in the plane orthogonal to the direction, u along the longest principal axis
-    of the projected surface, v across (so the net normal points along the direction); it is
-    the largest rectangle of a finer probing grid whose rays all hit, then ``rows × cols``
-    points (or ``spacing``) in it. The net is not yet geodesic: ``optimize --mode fit`` makes
-    it so.
+    The grid lies in the plane orthogonal to the direction (default: the shortest principal
+    axis, the mesh's overall normal), u along the longest principal axis of the projected
+    surface turned by ``angle`` degrees about the direction, v across (so the net normal points
+    along the direction); it is the largest rectangle of a finer probing grid whose rays all
+    hit, then ``rows × cols`` points (or ``spacing``) in it. The net is not yet geodesic:
+    ``optimize --mode fit`` makes it so.
     """
     import igl
 
-    d = _unit(direction)
     V, F = mesh.vertices, mesh.faces
+    d = principal_frame(V, F)[1][:, 2] if direction is None else _unit(direction)
     c, e1, e2 = plane_axes(V, F, d)
+    if angle:
+        e1 = rotated(e1, d, angle)
+        e2 = np.cross(d, e1)
     x, y, h = (V - c) @ e1, (V - c) @ e2, (V - c) @ d
     above = c + (h.max() + 0.1 * mesh.bbox_diagonal) * d
     tree = igl.AABB()
@@ -246,7 +321,6 @@ def init_project(mesh: ReferenceMesh, *, direction, rows: int | None = None,
         X, Y = np.meshgrid(xs, ys, indexing="ij")
         return above + X[..., None] * e1 + Y[..., None] * e2
 
-    want_r = rows
     res = int(np.clip(PROBE_FACTOR * max(rows or 0, cols or 0, DEFAULT_COLS), PROBE_MIN,
                       PROBE_MAX))
     span = max(np.ptp(x), np.ptp(y))
@@ -258,170 +332,40 @@ def init_project(mesh: ReferenceMesh, *, direction, rows: int | None = None,
     if rect is None:
         raise DgpcError("no rectangle of the projected grid lies on the mesh", source=mesh.path)
     r0, r1, c0, c1 = rect
-    for shrink in range(6):  # final rays between probe rays may miss: shrink by a probe step
-        x0, x1 = xs[min(r0 + shrink, r1)], xs[max(r1 - shrink, r0)]
-        y0, y1 = ys[min(c0 + shrink, c1)], ys[max(c1 - shrink, c0)]
-        if x1 <= x0 or y1 <= y0:
-            break
+    parameters = {"method": "project", "direction": d.tolist(), "rows": rows, "cols": cols,
+                  "spacing": spacing}
+    label = f"project {angle:g}°"
+
+    def make(x0, x1, y0, y1) -> MeshGrid | None:
         ncols = cols if cols is not None else (DEFAULT_COLS if spacing is None else None)
-        _check_size(ncols, want_r, spacing, y1 - y0, x1 - x0)
+        _check_size(ncols, rows, spacing, y1 - y0, x1 - x0)
         gy = _positions(y0, y1, ncols, spacing)
+        want_r = rows
         if want_r is None and spacing is None:
             want_r = max(3, int(round((x1 - x0) / ((y1 - y0) / (len(gy) - 1)))) + 1)
         gx = _positions(x0, x1, want_r, spacing if want_r is None else None)
         _check_count(len(gx), "rows", "--spacing")
         _check_count(len(gy), "columns", "--spacing")
         P, ok = _cast(mesh, tree, rays(gx, gy).reshape(-1, 3), d)
-        if ok.all():
-            f = P.reshape(len(gx), len(gy), 3)
-            log.info("project init: grid %.6g x %.6g in the plane, net %d x %d", x1 - x0,
-                     y1 - y0, *f.shape[:2])
-            data = {"init": {"method": "project", "direction": d.tolist(),
-                             "centroid": c.tolist(), "plane_axes": [e1.tolist(), e2.tolist()],
-                             "plane_range": [[float(x0), float(x1)], [float(y0), float(y1)]],
-                             "probe_grid": res}}
-            parameters = {"method": "project", "direction": d.tolist(), "rows": rows,
-                          "cols": cols, "spacing": spacing}
-            return NetArtifact(f=f, parameters=parameters, data=data)
+        if not ok.all():
+            return None
+        f = P.reshape(len(gx), len(gy), 3)
+        log.info("project init (%s): grid %.6g x %.6g in the plane, net %d x %d", label,
+                 x1 - x0, y1 - y0, *f.shape[:2])
+        data = {"init": {"method": "project", "direction": d.tolist(), "angle": angle,
+                         "centroid": c.tolist(), "plane_axes": [e1.tolist(), e2.tolist()],
+                         "plane_range": [[float(x0), float(x1)], [float(y0), float(y1)]],
+                         "probe_grid": res}}
+        return MeshGrid(NetArtifact(f=f, parameters=dict(parameters), data=data), gx, gy,
+                        label, make, traced=False)
+
+    for shrink in range(6):  # final rays between probe rays may miss: shrink by a probe step
+        x0, x1 = xs[min(r0 + shrink, r1)], xs[max(r1 - shrink, r0)]
+        y0, y1 = ys[min(c0 + shrink, c1)], ys[max(c1 - shrink, c0)]
+        if x1 <= x0 or y1 <= y0:
+            break
+        grid = make(x0, x1, y0, y1)
+        if grid is not None:
+            return grid
     raise DgpcError("the projected grid does not stay on the mesh (its outline is too ragged)",
                     source=mesh.path)
-
-
-# --- an existing quad net ------------------------------------------------------------------
-
-def read_quad_obj(path: Path) -> tuple[np.ndarray, np.ndarray]:
-    """Vertices ``(k, 3)`` and quads ``(q, 4)`` (0-based) of an OBJ file; DgpcError naming the
-    file for anything that is not a pure quad mesh."""
-    if path.suffix.lower() != ".obj":
-        raise DgpcError(f"--from-quads reads OBJ files, not '{path.suffix}'", source=path)
-    try:
-        text = path.read_bytes()
-    except FileNotFoundError:
-        raise DgpcError("no such file", source=path) from None
-    except OSError as e:
-        raise DgpcError(f"cannot read: {e.strerror or e}", source=path) from None
-    if b"\0" in text:
-        raise DgpcError("not an OBJ file: binary data", source=path)
-    verts, quads = [], []
-    for lineno, raw in enumerate(text.decode("utf-8", errors="replace").splitlines(), 1):
-        parts = raw.split()
-        if not parts:
-            continue
-        try:
-            if parts[0] == "v":
-                verts.append([float(p) for p in parts[1:4]])
-                if len(verts[-1]) != 3:
-                    raise ValueError
-            elif parts[0] == "f":
-                idx = [int(p.split("/")[0]) for p in parts[1:]]
-                if len(idx) != 4:
-                    raise DgpcError(f"line {lineno}: a face with {len(idx)} vertices; "
-                                    "--from-quads needs a mesh of quads only", source=path)
-                quads.append([i - 1 if i > 0 else len(verts) + i for i in idx])
-        except ValueError:
-            raise DgpcError(f"line {lineno}: cannot read {raw.strip()[:60]!r}",
-                            source=path) from None
-    if not quads:
-        raise DgpcError("no faces: --from-quads needs a regular quad net", source=path)
-    V, Q = np.asarray(verts, dtype=float), np.asarray(quads, dtype=np.int64)
-    if Q.min() < 0 or Q.max() >= len(V):
-        raise DgpcError("a face refers to a vertex that does not exist", source=path)
-    bad = bad_rows(V)
-    if bad.size:
-        raise DgpcError(f"vertex {int(bad[0]) + 1} has {coordinate_problem(V[bad[0]])}",
-                        source=path)
-    return V, Q
-
-
-def quad_grid(quads: np.ndarray, source) -> np.ndarray:
-    """The vertex ids ``(m, n)`` of a regular quad net: grid coordinates propagated face by
-    face from the corner vertex of lowest id (its face's order gives +u, then +v); DgpcError
-    when the quads are not one m×n grid."""
-    Q = np.asarray(quads, dtype=np.int64).tolist()
-    edge_faces: dict[tuple[int, int], list[int]] = {}
-    for fi, q in enumerate(Q):
-        for k in range(4):
-            a, b = q[k], q[(k + 1) % 4]
-            edge_faces.setdefault((min(a, b), max(a, b)), []).append(fi)
-    if any(len(fs) > 2 for fs in edge_faces.values()):
-        raise DgpcError("not a regular quad net: an edge is shared by more than two faces",
-                        source=source)
-    valence: dict[int, int] = {}
-    for q in Q:
-        for v in q:
-            valence[v] = valence.get(v, 0) + 1
-    corners = sorted(v for v, k in valence.items() if k == 1)
-    if not corners:
-        raise DgpcError("not a regular quad net: no corner vertex (closed or irregular)",
-                        source=source)
-    start = next(fi for fi, q in enumerate(Q) if corners[0] in q)
-    q0 = Q[start]
-    k0 = q0.index(corners[0])
-    q0 = q0[k0:] + q0[:k0]
-    coord = {q0[0]: (0, 0), q0[1]: (1, 0), q0[2]: (1, 1), q0[3]: (0, 1)}
-    seen = {start}
-    stack = [start]
-    bad = DgpcError("not a regular quad net: the faces do not fit one m x n grid",
-                    source=source)
-    while stack:  # one visit per face (an import, not a hot path)
-        fi = stack.pop()
-        q = Q[fi]
-        for k in range(4):
-            x, y = q[k], q[(k + 1) % 4]
-            xp, yp = q[(k - 1) % 4], q[(k + 2) % 4]  # x's and y's other neighbours
-            for g in edge_faces[(min(x, y), max(x, y))]:
-                if g == fi or g in seen:
-                    continue
-                r = Q[g]
-                ix, iy = r.index(x), r.index(y)
-                w = r[(ix - 1) % 4] if r[(ix + 1) % 4] == y else r[(ix + 1) % 4]
-                z = r[(iy - 1) % 4] if r[(iy + 1) % 4] == x else r[(iy + 1) % 4]
-                for new, old, opp in ((w, x, xp), (z, y, yp)):
-                    cx, cy = coord[old]
-                    ox, oy = coord[opp]
-                    want = (2 * cx - ox, 2 * cy - oy)
-                    if coord.setdefault(new, want) != want:
-                        raise bad
-                seen.add(g)
-                stack.append(g)
-    if len(seen) != len(Q):
-        raise DgpcError(f"not a regular quad net: {len(Q) - len(seen)} faces are not connected "
-                        "to the rest", source=source)
-    ids = np.fromiter(coord.keys(), dtype=np.int64)
-    ij = np.array(list(coord.values()), dtype=np.int64)
-    ij -= ij.min(axis=0)
-    m, n = (ij.max(axis=0) + 1).tolist()
-    if m * n != len(ids) or (m - 1) * (n - 1) != len(Q) or \
-            len(np.unique(ij[:, 0] * n + ij[:, 1])) != len(ids):
-        raise bad
-    grid = np.empty((m, n), dtype=np.int64)
-    grid[ij[:, 0], ij[:, 1]] = ids
-    return grid
-
-
-def init_from_quads(path: str | Path) -> NetArtifact:
-    """Import a regular quad net from an OBJ file (SPEC §5 ``--from-quads``).
-
-    The grid comes from :func:`quad_grid`; the u-lines (geodesics) are the family with the
-    smaller gpc angle defect (Prop. 2.7 (ii)) — the file's first family on a tie — and the
-    orientation keeps the file's face winding (a swap of the families reverses the other
-    index). A net written by ``dgpc`` reads back unchanged.
-    """
-    path = Path(path)
-    V, Q = read_quad_obj(path)
-    grid = quad_grid(Q, path)
-    m, n = grid.shape
-    if m < 3 or n < 3:
-        raise DgpcError(f"the quad net is {m} x {n}; a net needs at least 3 x 3", source=path)
-    f = V[grid]
-    swapped = np.transpose(f, (1, 0, 2))[:, ::-1]
-    d_keep, d_swap = gpc_angle_defect_max(f), gpc_angle_defect_max(swapped)
-    swap = d_keep is not None and d_swap is not None and d_swap < 0.5 * d_keep
-    if swap:
-        f = np.ascontiguousarray(swapped)
-    log.info("%s: %d x %d quad net; geodesics along the file's %s family (gpc defect %.3g vs "
-             "%.3g)", path, m, n, "second" if swap else "first", d_keep or 0.0, d_swap or 0.0)
-    data = {"init": {"method": "from-quads", "families_swapped": bool(swap),
-                     "gpc_angle_defect": {"first": d_keep, "second": d_swap}}}
-    return NetArtifact(f=np.asarray(f, dtype=float),
-                       parameters={"method": "from-quads"}, data=data)

@@ -18,6 +18,11 @@ BYTES_PER_VERTEX = 2048
 MAX_NET_BYTES = 4 * 2**30
 
 
+class NetTooLarge(DgpcError):
+    """A net beyond :data:`MAX_NET_BYTES`: the request itself is too large, whichever base
+    curve or direction it is tried on."""
+
+
 def net_bytes(m: float, n: float) -> float:
     """Estimated memory of making an ``m × n`` net, bytes (a float: counts estimated from a
     tiny spacing may be far beyond any integer size)."""
@@ -43,7 +48,7 @@ def check_net_size(m: float, n: float, source: str, hint: str) -> None:
     need = net_bytes(m, n)
     if need <= MAX_NET_BYTES and math.isfinite(need):
         return
-    raise DgpcError(f"a net of {_count(m)} × {_count(n)} vertices would need {_size(need)} "
+    raise NetTooLarge(f"a net of {_count(m)} × {_count(n)} vertices would need {_size(need)} "
                     f"({BYTES_PER_VERTEX} bytes per vertex), beyond the limit of "
                     f"{MAX_NET_BYTES / 2**30:g} GiB ({MAX_NET_BYTES // BYTES_PER_VERTEX} "
                     f"vertices); {hint}", source=source)

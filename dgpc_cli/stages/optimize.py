@@ -12,6 +12,7 @@ from dgpc_cli.core.layout import NetLayout
 from dgpc_cli.core.problem import Problem, constraint_error, mean_edge_length
 from dgpc_cli.core.solver import Schedule, SolverResult, guided_projection
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.metrics.degenerate import degeneracies
 from dgpc_cli.metrics.residuals import gpc_angle_defect, pleat
 from dgpc_cli.metrics.strain import strain
 from dgpc_cli.mold.isometry import panel_errors
@@ -30,6 +31,7 @@ class OptimizeOutcome:
     steps: list[SolverResult]
     residuals: dict[str, float]
     R: float
+    max_iter: int = 0
 
     @property
     def iterations(self) -> int:
@@ -88,7 +90,7 @@ def optimize_net(
     soft: tuple[str, ...] = (),
     boundary_ids: np.ndarray | None = None,
     steps: int = 1,
-    max_iter: int = 200,
+    max_iter: int | None = None,
     tol: float = 1e-10,
     backend: str = "auto",
     progress: Callable[[int, dict], None] | None = None,
@@ -109,6 +111,12 @@ def optimize_net(
     falls and no pleat appears (see :func:`_relax`). The returned ``R`` is the paper's
     constraint error over the hard terms at the returned vertices, net rescaled to mean edge
     length 1 (§6.2.5).
+
+    ``max_iter`` bounds the iterations of the whole run: each step gets at most an equal share
+    of what is left for the steps still to come and the final projection (a drag's intermediate
+    steps stop earlier, see ``STEP_MAX_ITER``), the relaxation rounds and the projection what
+    is left. Without it every step, and the projection, may take ``tol.max_iter`` iterations
+    (the outcome's ``max_iter`` is then the sum of those limits).
     """
     f = np.asarray(f, dtype=float)
     m, n = f.shape[:2]
@@ -127,7 +135,15 @@ def optimize_net(
     results: list[SolverResult] = []
     workspace = None
     total = 0
+    pulling = [t.name for t in problem.terms()
+               if (not t.hard or t.regularizer) and t.weight.end > 0]
+    phases = steps + bool(pulling)
+    budget = max_iter is not None
+    if not budget:
+        max_iter = _default_budget(steps, start is not None, relax in problem.active(),
+                                   bool(pulling))
     for s in range(1, steps + 1):
+        allowance = (max_iter - total) // (phases - s + 1) if budget else TOL.max_iter
         targets = None
         if start is not None:
             targets = start + (handle_targets - start) * (s / steps)
@@ -139,15 +155,16 @@ def optimize_net(
         result = guided_projection(x, problem.terms(targets), backend=backend,
                                    workspace=workspace, retract=layout.orient_edges,
                                    callback=step_progress,
-                                   **_step_limits(s, steps, start is not None, max_iter, tol))
+                                   **_step_limits(s, steps, start is not None, allowance, tol))
         log.info("step %d/%d: %s after %d iterations (%s)", s, steps, result.status,
                  result.iterations, result.message)
         workspace, x = result.workspace, result.x
         total += result.iterations
         results.append(result)
-    if relax is not None and relax in problem.active():
+    if relax is not None and relax in problem.active() and total < max_iter:
         f_input = f if problem.f0 is None else problem.f0
-        for result in _relax(problem, relax, x, f_input, targets, max_iter=max_iter, tol=tol,
+        for result in _relax(problem, relax, x, f_input, targets,
+                             max_iter=(max_iter - total) if budget else TOL.max_iter, tol=tol,
                              backend=backend, workspace=workspace,
                              callback=lambda k, r, _base=total: progress and progress(
                                  _base + k, {**r, "phase": "relaxing"})):
@@ -155,19 +172,23 @@ def optimize_net(
             results.append(result)
             total += result.iterations
     last = [r for r in results if r.status != "rejected"][-1]
-    pulling = [t.name for t in problem.terms()
-               if (not t.hard or t.regularizer) and t.weight.end > 0]
-    if not last.success and pulling:
+    if not last.success and pulling and total < max_iter:
         # The soft terms hold the hard ones off their tolerance (a reference that is not
         # exactly developable, say): project onto the hard constraints from here, soft terms
         # off, so that the result is the nearby net that meets them (guided projection's
         # damping keeps it close).
-        hard_only = Problem(layout, problem.scale, {**weights, **{name: Schedule.constant(0.0)
-                                                                 for name in pulling}},
+        # where a schedule such as fairness 0.01->0 runs again (it regularizes the first steps)
+        # the pulling terms fade out with it: alone it would drag the net, unopposed
+        again = any(w.start != w.end for w in weights.values())
+        hard_weights = {**weights, **{name: Schedule(weights[name].end, 0.0) if again
+                                      else Schedule.constant(0.0) for name in pulling}}
+        hard_only = Problem(layout, problem.scale, hard_weights,
                             problem.f0, handle_ids, handle_targets, reference, problem.soft,
                             boundary_ids, f)
         log.info("projecting onto the hard constraints without %s", ", ".join(pulling))
-        result = guided_projection(x, hard_only.terms(), max_iter=max_iter, tol=tol,
+        result = guided_projection(x, hard_only.terms(),
+                                   max_iter=(max_iter - total) if budget else TOL.max_iter,
+                                   tol=tol,
                                    backend=backend, retract=layout.orient_edges,
                                    callback=lambda k, r: progress and progress(
                                        total + k, {**r, "phase": "projection"}))
@@ -177,7 +198,9 @@ def optimize_net(
     norms = problem.residual_norms(f_out)
     last = [r for r in results if r.status != "rejected"][-1]
     return OptimizeOutcome(f=f_out, status=last.status, message=last.message, steps=results,
-                           residuals=norms, R=constraint_error(norms, weights, problem.soft))
+                           residuals=norms, R=constraint_error(norms, weights, problem.soft),
+                           max_iter=max_iter)
+
 
 
 #: Relaxation of a drag's regularizer: its weight falls to these fractions of the mode's, one
@@ -185,6 +208,16 @@ def optimize_net(
 #: by at least RELAX_GAIN per round and the pleat measure stays below half its tolerance (the
 #: last round, without it, reaches an exact isometric deformation where there is one).
 RELAX_FRACTIONS, RELAX_ITER, RELAX_GAIN = (1e-1, 1e-2, 1e-3, 0.0), 30, 0.9
+
+
+def _default_budget(steps: int, drag: bool, relax: bool, pulling: bool) -> int:
+    """The iterations a run without ``--max-iter`` may take at most: ``tol.max_iter`` for each
+    step (a drag's intermediate steps ``STEP_MAX_ITER``), the relaxation rounds, and
+    ``tol.max_iter`` for the final projection."""
+    limits = [_step_limits(s, steps, drag, TOL.max_iter, 0.0)["max_iter"]
+              for s in range(1, steps + 1)]
+    return (sum(limits) + (RELAX_ITER * len(RELAX_FRACTIONS) if relax else 0)
+            + (TOL.max_iter if pulling else 0))
 
 
 def _step_limits(s: int, steps: int, drag: bool, max_iter: int, tol: float) -> dict:
@@ -205,7 +238,8 @@ def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targ
     but never to a pleat: an isometric drag is a weighing of (6) against the edge lengths, and
     the less the smoothness weighs, the smaller the strain — until the net starts to pleat
     (their exact solutions). Returns the rounds' solver results; a round that did not help has
-    status ``rejected`` and the net it started from as its ``x``."""
+    status ``rejected`` and the net it started from as its ``x``. The rounds take at most
+    ``max_iter`` iterations together."""
     def measure(xv):
         g = problem.vertices(xv)
         corrugation = pleat(g)
@@ -216,15 +250,16 @@ def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targ
     accepted = []
     done = 0                                        # iterations of the rounds so far
     fractions = list(RELAX_FRACTIONS)
-    while fractions:
+    while fractions and done < max_iter:
         fraction = fractions.pop(0)
         weight = fraction * problem.weights[name].end
         lowered = Problem(problem.layout, problem.scale,
                           {**problem.weights, name: Schedule.constant(weight)}, problem.f0,
                           problem.handle_ids, problem.handle_targets, problem.reference,
                           problem.soft, problem.boundary_ids, problem.f_start)
-        result = guided_projection(x, lowered.terms(targets), max_iter=min(max_iter, RELAX_ITER),
-                                   tol=tol, backend=backend, workspace=workspace,
+        result = guided_projection(x, lowered.terms(targets),
+                                   max_iter=min(max_iter - done, RELAX_ITER), tol=tol,
+                                   backend=backend, workspace=workspace,
                                    retract=problem.layout.orient_edges,
                                    callback=callback and (lambda k, r, _done=done: callback(
                                        _done + k, r)))
@@ -259,13 +294,18 @@ def _worst_rows(per_vertex: np.ndarray, limit: float) -> str:
 
 def judge(outcome: OptimizeOutcome, f_input: np.ndarray, *, mode: str,
           max_strain: float = TOL.max_strain, gpc_tol: float = TOL.gpc_tol) -> tuple[str, str]:
-    """The state and message of an optimized net (SPEC §4): never ``converged`` on a pleated
-    net. In revolution mode ``converged`` only when every quad is within ``max_strain`` of the
-    surface of revolution extract-mold builds from the net (edges and diagonals); in isometric
-    mode only when the largest strain against the input (§6.1) is at most ``max_strain`` and
-    the gpc angle defect at most ``gpc_tol`` (radians).
+    """The state and message of an optimized net (SPEC §4): never ``converged`` on a folded,
+    collapsed or pleated net (state ``degenerate``, naming the rows and columns, see
+    :func:`~dgpc_cli.metrics.degenerate.degeneracies`; or ``pleated``). In revolution mode
+    ``converged`` only when every quad is within ``max_strain`` of the surface of revolution
+    extract-mold builds from the net (edges and diagonals); in isometric mode only when the
+    largest strain against the input (§6.1) is at most ``max_strain`` and the gpc angle defect
+    at most ``gpc_tol`` (radians).
     """
     f = outcome.f
+    found = degeneracies(f)
+    if found:
+        return "degenerate", f"folded or collapsed net: {found.message()}"
     corrugation = pleat(f)
     if corrugation.size and float(corrugation.max()) > TOL.pleat:
         return "pleated", (f"period-2 pleat across the geodesics of "

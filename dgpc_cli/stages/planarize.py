@@ -23,6 +23,7 @@ from dgpc_cli.strips.rulings import (
     strip_boundaries,
     strip_normals,
 )
+from dgpc_cli.strips.trim import strip_points, trim_strip
 
 log = logging.getLogger(__name__)
 
@@ -32,6 +33,8 @@ FLAT_ANGLE = 1e-6
 MAX_SHIFT = 0.45
 #: Quads with a planarity defect above this after the ruling construction get polished.
 POLISH_ABOVE = 1e-10
+#: ``--trim`` drops parts shorter than this many quads along the strip.
+MIN_PART_QUADS = 1.0
 
 
 @dataclass
@@ -168,3 +171,35 @@ def strips_metrics(strips: list[PlanarStrip]) -> dict:
                              "limited_rows": int(np.sum(s.limited))}
                       for s in strips},
     }
+
+
+def trim_records(strips: list[PlanarStrip], reference) -> tuple[list[dict], list[str]]:
+    """``planarize-strips --trim``: for every strip the parts inside the outline of
+    ``reference`` (``strips.trim``) as JSON records — id (the strip's id, with a letter when
+    the outline cuts the strip into several parts), outline in ``(t, s)`` and in 3-D, the rows
+    it spans — and the parts shorter than one quad, dropped; plus one note per dropped part or
+    strip."""
+    notes, records = [], []
+    for strip in strips:
+        parts = trim_strip(strip.A, strip.B, reference)
+        kept = [p for p in parts if p.quads >= MIN_PART_QUADS]
+        dropped = [p for p in parts if p.quads < MIN_PART_QUADS]
+        for p in dropped:
+            notes.append(f"{strip.id}: a part {p.quads:.2f} quads long (rows "
+                         f"{p.t_range[0]:.2f}-{p.t_range[1]:.2f}) dropped, shorter than one "
+                         "quad")
+        if not parts:
+            notes.append(f"{strip.id}: entirely beyond the reference's outline, dropped")
+        letters = len(kept) > 1
+        records.append({
+            "parts": [{"id": strip.id + (chr(ord("a") + k) if letters else ""),
+                       "outline": p.outline,
+                       "outline_3d": strip_points(strip.A, strip.B, p.outline),
+                       "rows": [int(np.floor(p.t_range[0])), int(np.ceil(p.t_range[1]))]}
+                      for k, p in enumerate(kept)],
+            "dropped": [{"rows": list(p.t_range), "quads": p.quads} for p in dropped]})
+    if not any(r["parts"] for r in records):
+        raise DgpcError("no strip reaches inside the reference's outline", source="--trim")
+    log.info("trim: %d parts kept, %d dropped", sum(len(r["parts"]) for r in records),
+             sum(len(r["dropped"]) for r in records))
+    return records, notes

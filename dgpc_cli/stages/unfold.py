@@ -18,8 +18,9 @@ from shapely.geometry import LineString, Polygon
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.strips.boards import Board, cumulative, split_boards
-from dgpc_cli.strips.congruence import congruence_classes
+from dgpc_cli.strips.congruence import Alignment, congruence_classes
 from dgpc_cli.strips.develop import Development, develop_strip, signed_area
+from dgpc_cli.strips.trim import developed_part
 
 log = logging.getLogger(__name__)
 
@@ -51,16 +52,28 @@ def _boards(geometry: list, devs: list[Development], ids: list[str], columns: li
 def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
                   congruence_tol: float = CONGRUENCE_TOL, mirror_ok: bool = False,
                   stock_length: float | None = None, stagger: float | None = None,
-                  source: str | None = None) -> tuple[list[dict], list[dict], list[dict]]:
+                  source: str | None = None, trims: list | None = None
+                  ) -> tuple[list[dict], list[dict], list[dict]]:
     """Develop every strip ``(A, B)`` of ``geometry`` (mm), cut it into boards no longer than
     ``stock_length`` (mm; None: whole strips) with joints ``stagger`` apart (default a quarter
     of the stock), and classify the parts.
 
     Returns the part records, class records and joint records of the flat artifact (see
     :mod:`dgpc_cli.io.flat`), in mm. DgpcError (naming ``source``) when a developed outline
-    crosses itself: a cutter cannot cut it.
+    crosses itself: a cutter cannot cut it. ``trims[i]`` (``planarize-strips --trim``), when
+    given, lists the parts of strip i inside the reference's outline (records with ``id`` and
+    ``outline`` in the strip's ``(t, s)``): those are developed instead of the whole strip,
+    each its own congruence class (their end cuts follow the outline); they are not cut into
+    boards.
     """
     devs = [develop_strip(A, B) for A, B in geometry]
+    if trims is not None and any(t is not None for t in trims):
+        if stock_length is not None:
+            raise DgpcError("strips trimmed to the reference's outline (planarize-strips "
+                            "--trim) are not cut into boards: unfold them without "
+                            "--stock-length", source="--stock-length")
+        return _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_ok,
+                               source)
     folded = [ids[i] for i, d in enumerate(devs) if not Polygon(d.outline).is_valid]
     if folded:
         raise DgpcError(f"the developed outline of {', '.join(folded)} crosses itself (its "
@@ -118,7 +131,8 @@ def records_in_units(parts: list[dict], classes: list[dict], joints: list[dict],
         al = p["alignment"]
         out.append({
             **p, "positions": [x / k for x in p["positions"]],
-            "outline": geometry(p["outline"]), "score": geometry(p["score"]),
+            "outline": geometry(p["outline"]),
+            "score": [geometry(line) for line in p["score"]],
             "label": geometry(p["label"]), "geodesics": [geometry(g) for g in p["geodesics"]],
             "length": p["length"] / k, "width": [w / k for w in p["width"]],
             "area": p["area"] / k**2,
@@ -126,6 +140,51 @@ def records_in_units(parts: list[dict], classes: list[dict], joints: list[dict],
                           "error": al["error"] / k}})
     return (out, [{**c, "max_error": c["max_error"] / k} for c in classes],
             [{**j, "position": j["position"] / k} for j in joints])
+
+
+def _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_ok, source):
+    """:func:`unfold_strips` for strips clipped to the reference's outline (mm)."""
+    whole = [i for i, t in enumerate(trims) if t is None]
+    if whole:
+        parts, classes, _ = unfold_strips(
+            [geometry[i] for i in whole], [ids[i] for i in whole],
+            [columns[i] for i in whole], congruence_tol=congruence_tol, mirror_ok=mirror_ok,
+            source=source)
+    else:
+        parts, classes = [], []
+    identity = Alignment(R=np.eye(2), t=np.zeros(2), relabel="identity", mirrored=False,
+                         error=0.0)
+    for i, trim in enumerate(trims):
+        if trim is None:
+            continue
+        d = devs[i]
+        A, B = (np.asarray(X, float) for X in geometry[i])
+        along = 0.5 * (cumulative(A) + cumulative(B))
+        for piece in trim["parts"]:
+            ring = np.asarray(piece["outline"], float)
+            part = developed_part(d.A, d.B, ring)
+            if not Polygon(part["outline"]).is_valid:
+                raise DgpcError(f"the developed outline of {piece['id']} crosses itself",
+                                source=source)
+            t0, t1 = float(ring[:, 0].min()), float(ring[:, 0].max())
+            cls = f"C{len(classes) + 1:02d}"
+            ga, gb = part["geodesics"]
+            parts.append({"id": piece["id"], "strip": int(columns[i]), "board": 1,
+                          "rows": [int(r) for r in piece["rows"]],
+                          "positions": [float(np.interp(t0, np.arange(len(along)), along)),
+                                        float(np.interp(t1, np.arange(len(along)), along))],
+                          "class": cls, "strain": d.strain,
+                          "width": list(part_widths(ga, gb)),
+                          "alignment": identity.record(part["length"]), "trimmed": True,
+                          **part})
+            classes.append({"id": cls, "representative": piece["id"], "quantity": 1,
+                            "members": [piece["id"]], "max_error": 0.0,
+                            "max_relative_error": 0.0})
+    if not parts:
+        raise DgpcError("no part lies inside the reference's outline", source=source)
+    log.info("%d parts (%d trimmed to the outline) in %d congruence classes", len(parts),
+             sum(bool(p.get("trimmed")) for p in parts), len(classes))
+    return parts, classes, []
 
 
 def flat_metrics(parts: list[dict], classes: list[dict]) -> dict:
