@@ -23,6 +23,10 @@ class Tolerances:
     max_strain: float = 3e-4
     #: Largest gpc angle defect of an isometric deformation, radians.
     gpc_tol: float = 1e-4
+    #: Largest coordinate (absolute, in the model's unit) of any point read: a mesh, net, OBJ,
+    #: profile or handle beyond it is refused; squares of differences must not overflow, and a
+    #: billion units (1000 km in mm, a million km in m) is beyond any building.
+    max_coordinate: float = 1e9
 
 
 tol = Tolerances()

@@ -6,6 +6,7 @@ from __future__ import annotations
 import hashlib
 import json
 import shutil
+from pathlib import Path
 
 import click
 import numpy as np
@@ -14,6 +15,7 @@ from cli_helpers import dgpc
 
 from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.main import COMMANDS, cli
+from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.net import NetArtifact, write_net
 
 
@@ -281,6 +283,7 @@ OBJ_EDITS = {
     "vertex-added": _edit_lines(lambda ls: ls.insert(_vertex_line(ls) + 1, b"v 0.5 0.5 0.0")),
     "nan": _edit_lines(lambda ls: ls.__setitem__(_vertex_line(ls, 1), b"v nan 0.0 0.0")),
     "inf": _edit_lines(lambda ls: ls.__setitem__(_vertex_line(ls, 2), b"v 1.0 1e999 0.0")),
+    "huge": _edit_lines(lambda ls: ls.__setitem__(_vertex_line(ls, 3), b"v 1e308 0.0 0.0")),
 }
 
 #: kind -> (the OBJ's suffix, its sha256 field, the commands that read it; {x} the artifact).
@@ -293,6 +296,9 @@ OBJ_READERS = {
     "sheets": (".obj", ("obj_sha256",), [["report", "{x}"], ["inspect", "{x}"]]),
     "strips": (".obj", ("obj_sha256",), [["unfold", "{x}"], ["inspect", "{x}"]]),
     "shell": (".obj", ("obj_sha256",), [["inspect", "{x}"], ["report", "{x}"]]),
+    "cat": (".obj", ("obj_sha256",), [["planarize-strips", "{x}"], ["inspect", "{x}"],
+                                      ["optimize", "{x}", "--mode", "revolution"],
+                                      ["extract-mold", "{x}"]]),
 }
 
 
@@ -317,3 +323,215 @@ def test_edited_obj_with_its_hash_updated(sample, tmp_path, kind, edit):
         out = [] if args[0] == "inspect" else ["-o", tmp_path / "out"]
         result = run_bad([sample, tmp_path], [*args, *out], 1, f"bad{suffix}")
         assert result.stdout == ""
+
+
+# -- item 9: the files an artifact lists lie in its folder; a recorded reference is checked -----
+
+#: kind -> the listed files moved out of the artifact's folder ((field path in data, suffix)),
+#: and the commands that read them ({x} the artifact, {d} the sample folder).
+LISTED = {
+    "mold": ([(("obj",), ".obj"), (("files", "profile_csv", "path"), ".profile.csv"),
+              (("files", "panels_obj", "path"), ".panels.obj")],
+             [["nest", "{d}/flat", "--mold", "{x}", "--sheet", "2500x1250", "--scale", 100],
+              ["inspect", "{x}"], ["report", "{x}"]]),
+    "sheets": ([(("files", "sheet01_png", "path"), ".sheet01.png"), (("obj",), ".obj")],
+               [["report", "{x}"], ["inspect", "{x}"]]),
+    "shell": ([(("cut_list",), ".csv")], [["inspect", "{x}"], ["report", "{x}"]]),
+    "flat": ([(("files", "parts_csv", "path"), ".parts.csv")],
+             [["nest", "{x}", "--sheet", "2500x1250", "--scale", 100]]),
+    "cat": ([(("obj",), ".obj")], [["planarize-strips", "{x}"], ["inspect", "{x}"]]),
+}
+
+
+def _listed_cases():
+    for kind, (fields, commands) in sorted(LISTED.items()):
+        for field, suffix in fields:
+            for how in ("absolute", "dotdot"):
+                yield pytest.param(kind, field, suffix, how, commands,
+                                   id=f"{kind}-{'.'.join(field)}-{how}")
+
+
+@pytest.mark.parametrize("kind, field, suffix, how, commands", list(_listed_cases()))
+def test_a_listed_file_outside_the_artifacts_folder(sample, tmp_path, kind, field, suffix,
+                                                    how, commands):
+    """A listed file moved out of the artifact's folder, its path in the JSON an absolute one
+    or one with '..', its sha256 still matching: exit 1, one line naming the JSON and field."""
+    art, elsewhere = tmp_path / "art", tmp_path / "elsewhere"
+    art.mkdir()
+    elsewhere.mkdir()
+    moved = elsewhere / f"bad{suffix}"
+    target = str(moved) if how == "absolute" else f"../elsewhere/bad{suffix}"
+
+    def point_out(doc):
+        record = doc["data"]
+        for key in field[:-1]:
+            record = record[key]
+        record[field[-1]] = target
+
+    bad = copy_artifact(sample / f"{kind}.json", art, "bad", point_out)
+    (art / f"bad{suffix}").rename(moved)
+    name = ".".join(("data", *(field[:-1] if field[-1] == "path" else field)))
+    for command in commands:
+        args = [str(a).format(d=sample, x=bad) for a in command]
+        out = [] if args[0] == "inspect" else ["-o", tmp_path / "out"]
+        result = run_bad([sample, tmp_path], [*args, *out], 1, "bad.json", name, target)
+        assert result.stdout == ""
+        assert ("absolute" if how == "absolute" else "'..'") in result.stderr
+
+
+@pytest.fixture(scope="module")
+def fitted(tmp_path_factory):
+    """A small net of revolution whose reference mesh is recorded one folder up ('..')."""
+    d = tmp_path_factory.mktemp("reference")
+    (d / "nets").mkdir()
+    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 7, "--cols", 5,
+         "--reference-out", d / "ref.obj", "-o", d / "nets" / "net")
+    return d
+
+
+def test_a_recorded_reference_may_lie_elsewhere(fitted, tmp_path):
+    """The exception: a reference mesh recorded outside the net's folder is used (sha256
+    checked) by optimize --mode fit, inspect and report."""
+    assert json.loads((fitted / "nets" / "net.json").read_text())["data"]["reference"][
+        "path"] == "../ref.obj"
+    result = dgpc("optimize", fitted / "nets" / "net", "--mode", "fit", "--max-iter", 2,
+                  "-o", tmp_path / "fit", expect=None)
+    assert result.exit_code in (0, 3), result.stderr
+    assert "hausdorff" in json.loads(dgpc("inspect", fitted / "nets" / "net").stdout)
+
+
+@pytest.mark.parametrize("command", [["optimize", "{n}", "--mode", "fit", "-o", "{o}/fit"],
+                                     ["inspect", "{n}"], ["report", "{n}", "-o", "{o}/r"]])
+def test_a_changed_recorded_reference_is_refused(fitted, tmp_path, command):
+    """The recorded reference edited after the net was written: every command that uses it
+    refuses it (exit 1, one line naming the net and data.reference), before any solve."""
+    d = tmp_path / "copy"
+    shutil.copytree(fitted, d)
+    with open(d / "ref.obj", "ab") as fh:
+        fh.write(b"v 0 0 0\n")
+    args = [a.format(n=d / "nets" / "net", o=tmp_path) for a in command]
+    result = run_bad([d, tmp_path], args, 1, "net.json", "data.reference", "../ref.obj",
+                     "sha256")
+    assert result.stdout == ""
+
+
+@pytest.mark.parametrize("edit, words", [
+    pytest.param(lambda r: r.pop("sha256"), ["no sha256 recorded"], id="no-sha256"),
+    pytest.param(lambda r: r.__setitem__("path", "../../nowhere.obj"), ["missing"],
+                 id="missing"),
+])
+def test_a_recorded_reference_without_a_hash_or_file(fitted, tmp_path, edit, words):
+    d = tmp_path / "copy"
+    shutil.copytree(fitted, d)
+    doc = json.loads((d / "nets" / "net.json").read_text())
+    edit(doc["data"]["reference"])
+    (d / "nets" / "net.json").write_text(json.dumps(doc))
+    run_bad([d, tmp_path], ["optimize", d / "nets" / "net", "--mode", "fit",
+                            "-o", tmp_path / "fit"], 1, "net.json", "data.reference", *words)
+
+
+# -- item 6: a net beyond the memory limit is refused before it is made -------------------------
+
+FELT = Path(__file__).resolve().parents[1] / "samples" / "meshes" / "felt.obj"
+
+
+@pytest.mark.parametrize("args, option", [
+    (["--surface", "revolution", "--profile", "catenoid", "--rows", 100000, "--cols", 100000],
+     "--rows/--cols"),
+    ([FELT, "--method", "geodesic", "--rows", 100000, "--cols", 100000], "--rows/--cols"),
+    ([FELT, "--method", "geodesic", "--cols", 100000], "--rows/--cols"),
+    ([FELT, "--method", "geodesic", "--spacing", 1e-9], "--spacing"),
+    ([FELT, "--method", "project", "--direction", "0,0,1", "--spacing", 1e-300], "--spacing"),
+    ([FELT, "--method", "project", "--direction", "0,0,1", "--rows", 3000, "--cols", 3000],
+     "--rows/--cols"),
+], ids=["revolution", "geodesic-rows-cols", "geodesic-cols", "geodesic-spacing",
+        "project-spacing", "project-rows-cols"])
+def test_a_net_beyond_the_memory_limit_is_refused(tmp_path, args, option):
+    result = run_bad([tmp_path], ["init", *args, "-o", tmp_path / "big"], 1, option,
+                     "memory", "beyond the limit of 4 GiB")
+    assert result.stdout == "" and not any(tmp_path.iterdir())
+
+
+def test_the_memory_limit():
+    from dgpc_cli.stages.net_size import MAX_NET_BYTES, check_net_size
+
+    check_net_size(1448, 1448, "--rows/--cols", "")
+    for m, n in ((1449, 1448), (float("inf"), 3), (1e300, 1e300)):
+        with pytest.raises(DgpcError):
+            check_net_size(m, n, "--rows/--cols", "")
+    assert MAX_NET_BYTES == 4 * 2**30  # the README documents it
+
+
+# -- item 5: extreme but finite numbers end in one line, not an internal error ------------------
+
+def test_a_profile_row_at_1e308(tmp_path):
+    (tmp_path / "p.csv").write_text("r,h\n1,0\n1.2,0.5\n1e308,1e308\n")
+    run_bad([tmp_path], ["init", "--surface", "revolution", "--profile", tmp_path / "p.csv",
+                         "--rows", 9, "--cols", 7, "-o", tmp_path / "out"], 1,
+            "p.csv", "line 4", "1e+308")
+
+
+def test_a_mesh_vertex_at_1e308(tmp_path):
+    text = FELT.read_text().splitlines()
+    k = next(i for i, line in enumerate(text) if line.startswith("v "))
+    text[k] = "v 1e308 0 0"
+    (tmp_path / "m.obj").write_text("\n".join(text) + "\n")
+    run_bad([tmp_path], ["init", tmp_path / "m.obj", "--method", "geodesic",
+                         "-o", tmp_path / "out"], 1, "m.obj", "vertex 1", "1e+308")
+
+
+def test_a_handle_at_1e308(sample, tmp_path):
+    (tmp_path / "h.json").write_text(json.dumps(
+        {"handles": [{"index": [0, 0], "target": [1e308, 0, 0]}]}))
+    run_bad([sample, tmp_path], ["optimize", sample / "cat", "--mode", "isometric", "--handles",
+                                 tmp_path / "h.json", "-o", tmp_path / "out"], 1,
+            "h.json", "handles[0].target", "1e+308")
+
+
+@pytest.mark.parametrize("kind, edit, field", [
+    ("flat", lambda d: d["data"]["parts"][0]["geodesics"][0][1].__setitem__(0, 1e308),
+     "data.parts[0].geodesics[0][1]"),
+    ("flat", lambda d: d["data"]["parts"][1]["outline"][2].__setitem__(1, -1e300),
+     "data.parts[1].outline[2]"),
+    ("mold", lambda d: d["data"]["profile"]["r"].__setitem__(1, 1e308), "data.profile.r[1]"),
+])
+def test_a_number_at_1e308_in_an_artifact(sample, tmp_path, kind, edit, field):
+    bad = copy_artifact(sample / f"{kind}.json", tmp_path, "bad", edit)
+    args = (["nest", bad] if kind == "flat" else ["nest", sample / "flat", "--mold", bad])
+    run_bad([sample, tmp_path], [*args, "--sheet", "2500x1250", "--scale", 100,
+                                 "-o", tmp_path / "out"], 1, "bad.json", field, "beyond")
+
+
+@pytest.mark.parametrize("args, option", [
+    (["--sheet", "1e308x1e308"], "--sheet"),
+    (["--sheet", "2500x1250", "--margin", 1e300], "--margin"),
+    (["--sheet", "2500x1250", "--spacing", 1e300], "--spacing"),
+    (["--sheet", "2500x1250", "--scale", 1e308], "--scale"),
+])
+def test_a_huge_nest_option(sample, tmp_path, args, option):
+    run_bad([sample, tmp_path], ["nest", sample / "flat", *args, "-o", tmp_path / "out"], 1,
+            option, "beyond")
+
+
+@pytest.mark.parametrize("args, option", [
+    ([FELT, "--method", "geodesic", "--extend", 1e308], "--extend"),
+    ([FELT, "--method", "geodesic", "--extend", 1e30], "--extend"),
+    (["--surface", "revolution", "--profile", "catenoid", "--rows", 9, "--cols", 7,
+      "--twist", 1e308], "--twist"),
+])
+def test_a_huge_init_option(tmp_path, args, option):
+    run_bad([tmp_path], ["init", *args, "-o", tmp_path / "out"], 1, option)
+
+
+def test_a_non_manifold_mesh(tmp_path):
+    """A fin on an inner edge of the mesh (three faces on one edge) is refused on reading,
+    not deep in the geodesic tracer."""
+    lines = FELT.read_text().splitlines()
+    vertices = sum(line.startswith("v ") for line in lines)
+    faces = [line for line in lines if line.startswith("f ")]
+    a, b = (p.split("/")[0] for p in faces[len(faces) // 2].split()[1:3])
+    lines += ["v 0 0 50", f"f {a} {b} {vertices + 1}"]
+    (tmp_path / "fin.obj").write_text("\n".join(lines) + "\n")
+    run_bad([tmp_path], ["init", tmp_path / "fin.obj", "--method", "geodesic",
+                         "-o", tmp_path / "out"], 1, "fin.obj", "not a manifold mesh",
+            "borders 3 faces")

@@ -215,3 +215,19 @@ def test_load_envelope_bad_input_hash(tmp_path):
     path = write_doc(tmp_path / "a.json", doc)
     with pytest.raises(DgpcError, match=r"inputs\.mesh\.sha256"):
         load_envelope(path, "probe")
+
+
+@pytest.mark.parametrize("text", ["/etc/passwd", "../x.obj", "a/../../x.obj", "..",
+                                  "C:\\x.obj", "C:x.obj", "\\\\host\\share\\x.obj", "..\\x.obj",
+                                  "", ".", None, 3])
+def test_listed_path_refuses_a_file_outside_the_folder(tmp_path, text):
+    with pytest.raises(DgpcError) as err:
+        artifact_mod.listed_path(text, tmp_path / "a.json", "data.files.x")
+    assert str(err.value).startswith(f"{tmp_path / 'a.json'}: data.files.x: ")
+
+
+@pytest.mark.parametrize("text", ["a.obj", "sub/a.obj", "./a.obj"])
+def test_listed_path_is_read_against_the_artifacts_folder(tmp_path, text, monkeypatch):
+    monkeypatch.chdir(tmp_path.parent)
+    path = artifact_mod.listed_path(text, Path(tmp_path.name) / "a.json", "data.obj")
+    assert path == tmp_path.resolve() / Path(text)

@@ -17,13 +17,14 @@ from dgpc_cli.cli.options import (
     show_progress,
 )
 from dgpc_cli.errors import DgpcError
-from dgpc_cli.io.artifact import artifact_paths, file_input, relative_input
+from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import net_files
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.units import DEFAULT_UNITS, UNIT_MM
 from dgpc_cli.stages.init import init_revolution
 from dgpc_cli.stages.inspect import summarize
+from dgpc_cli.stages.net_size import check_net_size
 from dgpc_cli.surfaces.profiles import describe_builtins
 
 log = logging.getLogger(__name__)
@@ -49,6 +50,8 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
     from dgpc_cli.io.mesh import load_mesh
     from dgpc_cli.stages.init_choice import choose
 
+    if rows is not None and cols is not None:  # refused before the mesh is read
+        check_net_size(rows, cols, "--rows/--cols", "use fewer --rows or --cols")
     mesh = load_mesh(reference, pieces="largest" if largest_component else "one")
     domain = continued(mesh, extend)
     grid, outcome, tried = choose(mesh, domain, method, base=base, direction=direction,
@@ -190,12 +193,9 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     mesh = None
     if surface:
         result = init_revolution(profile, rows, cols, span_deg=span, twist=twist,
-                                 reference_out=reference_out, units=units)
+                                 reference_out=reference_out, units=units, folder=folder)
         net = result.net
-        if "profile" in net.inputs:
-            net.inputs["profile"] = file_input(net.inputs["profile"], folder)
         if result.reference_obj is not None:
-            net.data["reference"] = relative_input(reference_out, folder, result.reference_obj)
             files[reference_out] = result.reference_obj
     elif method:
         net, mesh = _mesh_net(ctx, reference, method, base, d, angle, rows, cols, spacing,

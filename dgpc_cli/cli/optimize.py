@@ -15,7 +15,7 @@ from dgpc_cli.core.solver import Schedule
 from dgpc_cli.core.solver.linear import BACKENDS
 from dgpc_cli.errors import DgpcError, NotConverged
 from dgpc_cli.geodesics.extension import fit_surface
-from dgpc_cli.io.artifact import artifact_paths, file_input, resolve_input
+from dgpc_cli.io.artifact import artifact_paths, file_input, recorded_file, resolve_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.handles import read_handles
 from dgpc_cli.io.mesh import load_mesh
@@ -34,13 +34,16 @@ log = logging.getLogger(__name__)
 def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: str,
                keep: bool = True):
     """The reference mesh: --reference, else the one the net records unless ``keep`` is off
-    (--no-reference; fit needs one); only its largest piece when the net was made with
-    ``init --largest-component``."""
+    (--no-reference; fit needs one), checked against its recorded sha256; only its largest
+    piece when the net was made with ``init --largest-component``."""
     if reference is None and keep and net.data.get("reference"):
-        reference = resolve_input(net.data["reference"], json_path)
-        if not reference.is_file():
-            raise DgpcError(f"the reference it records, {reference}, is missing (give "
-                            "--reference MESH, or --no-reference to drop it)", source=json_path)
+        record = net.data["reference"]
+        if isinstance(record, dict) and isinstance(record.get("path"), str) \
+                and not resolve_input(record, json_path).is_file():
+            raise DgpcError(f"data.reference: the reference it records, {record['path']}, is "
+                            "missing (give --reference MESH, or --no-reference to drop it)",
+                            source=json_path)
+        reference = recorded_file(record, json_path, "data.reference")
         log.info("using the reference recorded in %s: %s", json_path, reference)
     if reference is None:
         if mode == "fit":

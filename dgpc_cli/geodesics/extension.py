@@ -26,6 +26,9 @@ from dgpc_cli.io.mesh import ReferenceMesh
 MAX_MITRE = 2.0
 #: Ring width in mean boundary edge lengths.
 RING_WIDTH = 1.0
+#: The most vertices the rings of a continuation may add (``init --extend`` against the
+#: mesh's boundary: rings one boundary edge wide out to F × the diagonal).
+MAX_RING_VERTICES = 2_000_000
 #: A boundary face lower than this fraction of its boundary edge, or a boundary edge shorter
 #: than this fraction of the mean, gives no outward direction of its own.
 SLIVER = 1e-2
@@ -223,6 +226,7 @@ def continued(mesh: ReferenceMesh, fraction: float) -> ReferenceMesh:
     does not."""
     if fraction <= 0:
         return mesh
+    check_extension_size(mesh, fraction)
     V, F, folds = _continuation(mesh, fraction)
     if folds:
         raise DgpcError(
@@ -230,6 +234,27 @@ def continued(mesh: ReferenceMesh, fraction: float) -> ReferenceMesh:
             f"concave boundary ({folds} triangles turned over); at most "
             f"{largest_unfolded(mesh, fraction):.3g} does not", source="--extend")
     return dataclasses.replace(mesh, vertices=V, faces=F)
+
+
+def check_extension_size(mesh: ReferenceMesh, extend: float) -> None:
+    """DgpcError naming ``--extend`` when the continuation of ``mesh`` for ``init --extend
+    extend`` (out to :data:`FIT_REACH` × ``extend`` of its diagonal, what ``optimize`` fits to)
+    would add more than :data:`MAX_RING_VERTICES`; estimated before anything is allocated."""
+    V, F = np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int64)
+    edges, _ = boundary_edges(F)
+    if len(edges) == 0:
+        return
+    edges = edges[outer_loop(V, edges)]
+    width = float(np.mean(np.linalg.norm(V[edges[:, 1]] - V[edges[:, 0]], axis=1)))
+    rings = FIT_REACH * extend * mesh.bbox_diagonal / (RING_WIDTH * width)
+    added = rings * len(np.unique(edges))
+    if not added <= MAX_RING_VERTICES:
+        largest = MAX_RING_VERTICES / added * extend
+        raise DgpcError(f"continuing {mesh.path.name} by {extend:g} of its diagonal (fitted to "
+                        f"{FIT_REACH:g} times that) would add {added:.3g} vertices in rings of "
+                        f"{width:.3g}, beyond the limit of {MAX_RING_VERTICES}"
+                        + (f"; at most {largest:.3g} stays within it" if largest > 0 else ""),
+                        source="--extend")
 
 
 def largest_unfolded(mesh: ReferenceMesh, fraction: float, steps: int = 12) -> float:
@@ -248,6 +273,7 @@ def fit_surface(mesh: ReferenceMesh, fraction: float) -> ReferenceMesh:
     without folding (the mesh itself for 0)."""
     if fraction <= 0:
         return mesh
+    check_extension_size(mesh, fraction)
     reach = FIT_REACH * fraction
     V, F, folds = _continuation(mesh, reach)
     if not folds:

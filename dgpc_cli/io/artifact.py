@@ -5,7 +5,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-from pathlib import Path
+from pathlib import Path, PurePosixPath, PureWindowsPath
 from typing import Any
 
 from .. import __version__
@@ -79,8 +79,69 @@ def relative_input(path: str | Path, relative_to: str | Path, data: bytes) -> di
 
 
 def resolve_input(record: dict, artifact_json: str | Path) -> Path:
-    """The path of an input recorded as ``{"path", "sha256"}`` relative to the artifact."""
+    """The path of an input recorded as ``{"path", "sha256"}`` relative to the artifact (it
+    may lie anywhere: read it through :func:`recorded_file`, which checks its sha256)."""
     return Path(artifact_json).resolve().parent / record["path"]
+
+
+def recorded_file(record: Any, json_path: str | Path, field: str) -> Path:
+    """The file an artifact records under ``field`` as ``{"path", "sha256"}`` outside its own
+    folder as well (a reference mesh, an input), checked before use: a path and a sha256 are
+    recorded, the file is there, and its bytes still have that sha256. DgpcError naming the
+    artifact and ``field`` otherwise."""
+    if not isinstance(record, dict) or not isinstance(record.get("path"), str) \
+            or not record["path"]:
+        raise DgpcError(f"{field}: no path recorded", source=json_path)
+    sha256 = record.get("sha256")
+    if not isinstance(sha256, str) or len(sha256) != 64:
+        raise DgpcError(f"{field}: no sha256 recorded for {record['path']}, so it cannot be "
+                        "checked", source=json_path)
+    path = resolve_input(record, json_path)
+    if not path.is_file():
+        raise DgpcError(f"{field}: {record['path']} is missing (recorded relative to the "
+                        "artifact's folder)", source=json_path)
+    if sha256_file(path) != sha256:
+        raise DgpcError(f"{field}: {record['path']} changed since the artifact was written "
+                        "(sha256 differs)", source=json_path)
+    return path
+
+
+def listed_path(text: Any, json_path: str | Path, field: str) -> Path:
+    """The path of a file that the artifact ``json_path`` lists under ``field`` (its OBJ, a
+    DXF, CSV or PNG): relative to the artifact's folder and inside it. An absolute path or one
+    with a ``..`` step is a DgpcError naming the artifact and ``field`` (a listed file is never
+    looked for elsewhere)."""
+    if not isinstance(text, str) or not text or text in (".", "./"):
+        raise DgpcError(f"{field}: {text!r} is not a file name", source=json_path)
+    posix, windows = PurePosixPath(text), PureWindowsPath(text)
+    if posix.is_absolute() or windows.is_absolute() or windows.drive or windows.root:
+        raise DgpcError(f"{field}: {text!r} is an absolute path; the files an artifact lists "
+                        "lie in its own folder", source=json_path)
+    if ".." in posix.parts or ".." in windows.parts:
+        raise DgpcError(f"{field}: {text!r} leads out of the artifact's folder ('..'); the "
+                        "files an artifact lists lie in its own folder", source=json_path)
+    return Path(json_path).resolve().parent / posix
+
+
+def check_listed_paths(doc: dict, json_path: str | Path) -> None:
+    """Every file an artifact lists (``data.obj``, ``data.cut_list``, ``data.files.*.path``,
+    ``data.rhino_3dm.path``) lies in its folder (:func:`listed_path`); the recorded reference
+    mesh and the inputs may lie anywhere, checked by sha256 where used."""
+    data = doc.get("data")
+    if not isinstance(data, dict):
+        return
+    for key in ("obj", "cut_list"):
+        if key in data:
+            listed_path(data[key], json_path, f"data.{key}")
+    files = data.get("files")
+    if isinstance(files, dict):
+        for key in sorted(files):
+            record = files[key]
+            listed_path(record.get("path") if isinstance(record, dict) else record, json_path,
+                        f"data.files.{key}")
+    rhino = data.get("rhino_3dm")
+    if isinstance(rhino, dict):
+        listed_path(rhino.get("path"), json_path, "data.rhino_3dm")
 
 
 def artifact_files(kind: str, stem: str | Path, obj_bytes: bytes, data: dict, *,
@@ -196,4 +257,5 @@ def load_envelope(path: str | Path, kind: str) -> dict:
     json_path, _ = artifact_paths(path)
     doc = read_json(json_path)
     validate_envelope(doc, kind, json_path)
+    check_listed_paths(doc, json_path)
     return doc

@@ -37,11 +37,12 @@ from ..errors import DgpcError
 from .artifact import (
     artifact_files,
     artifact_paths,
+    listed_path,
     load_envelope,
     read_listed,
     relative_input,
-    resolve_input,
 )
+from .coordinates import bad_rows, coordinate_problem
 from .obj import check_obj_objects, parse_obj
 from .strips import format_parts_obj, read_obj_checked
 from .units import DEFAULT_UNITS, mm_per_unit
@@ -144,6 +145,22 @@ def flat_files(stem: str | Path, art: FlatArtifact) -> dict[Path, bytes]:
     return {**files, csv_path(stem): table}
 
 
+def _check_part_points(parts: list[dict], json_path: Path) -> None:
+    """Every point of every part (outline, score lines, label, geodesics) within the range of
+    :mod:`.coordinates`; DgpcError naming the first one beyond it."""
+    for i, part in enumerate(parts):
+        fields = [("outline", part["outline"]), ("label", [part["label"]])]
+        fields += [(f"score[{j}]", s) for j, s in enumerate(part["score"])]
+        fields += [(f"geodesics[{j}]", g) for j, g in enumerate(part["geodesics"])]
+        for name, points in fields:
+            points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+            bad = bad_rows(points)
+            if bad.size:
+                where = "" if name == "label" else f"[{int(bad[0])}]"
+                raise DgpcError(f"data.parts[{i}].{name}{where}: "
+                                f"{coordinate_problem(points[bad[0]])}", source=json_path)
+
+
 def _obj_vertices(part: dict) -> int:
     """Vertices of a part's OBJ object: 2 per row, or for a part trimmed to the reference's
     outline those of its outline and score lines."""
@@ -162,9 +179,11 @@ def read_flat(stem: str | Path) -> FlatArtifact:
     check_obj_objects(obj, [(p["id"], _obj_vertices(p)) for p in data["parts"]], obj_path,
                       "data.parts")
     for key, record in data["files"].items():
-        read_listed(resolve_input(record, json_path), record["sha256"], json_path,
-                    f"data.files.{key}")
+        field = f"data.files.{key}"
+        read_listed(listed_path(record["path"], json_path, field), record["sha256"], json_path,
+                    field)
     parts, classes = data["parts"], data["classes"]
+    _check_part_points(parts, json_path)
     ids = [p["id"] for p in parts]
     if len(set(ids)) != len(ids):
         raise DgpcError("data.parts: duplicate part ids", source=json_path)

@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import DgpcError
+from .coordinates import bad_rows, coordinate_problem
 from .jsonable import load_schema, read_json, validate
 
 
@@ -36,9 +37,10 @@ def read_handles(path: str | Path, shape: tuple[int, int], f: np.ndarray, scale:
             raise DgpcError(f"handles[{k}].index: ({u}, {v}) is outside the {m} x {n} grid",
                             source=path)
         key = "target" if "target" in entry else "offset"
-        vec = np.asarray(entry[key], dtype=np.float64) * scale
-        if not np.isfinite(vec).all():
-            raise DgpcError(f"handles[{k}].{key}: non-finite number {entry[key]}", source=path)
+        vec = np.asarray(entry[key], dtype=np.float64)
+        if bad_rows(vec[None]).size:
+            raise DgpcError(f"handles[{k}].{key}: {coordinate_problem(vec)}", source=path)
+        vec = vec * scale
         vid = u * n + v
         if vid in first:
             raise DgpcError(f"handles[{k}].index: vertex ({u}, {v}) is already a handle in "

@@ -14,6 +14,7 @@ from ..errors import DgpcError
 from .artifact import (
     artifact_paths,
     dumps_json,
+    listed_path,
     load_envelope,
     make_envelope,
     read_listed,
@@ -151,7 +152,7 @@ def read_laths(stem: str | Path) -> LathsArtifact:
     doc = load_envelope(json_path, KIND)
     data = doc["data"]
     obj = read_listed(obj_path, data["obj_sha256"], json_path, "data.obj_sha256")
-    csv_path = json_path.parent / data["cut_list"]
+    csv_path = listed_path(data["cut_list"], json_path, "data.cut_list")
     csv = read_listed(csv_path, data["cut_list_sha256"], json_path, "data.cut_list_sha256")
     objects = parse_obj(obj, obj_path).objects  # text, finite, lines join existing vertices
     polylines = parse_polylines(obj.decode("utf-8"))

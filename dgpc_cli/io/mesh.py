@@ -13,6 +13,7 @@ from scipy import sparse
 from scipy.sparse import csgraph
 
 from ..errors import DgpcError
+from .coordinates import bad_rows, coordinate_problem
 
 log = logging.getLogger(__name__)
 
@@ -140,6 +141,30 @@ def clean_mesh(vertices: np.ndarray, faces: np.ndarray):
             np.ascontiguousarray(consistent_winding(mesh.faces), dtype=np.int64))
 
 
+def check_manifold(vertices: np.ndarray, faces: np.ndarray, source) -> None:
+    """DgpcError naming ``source`` unless every edge of ``faces (t, 3)`` (consistently wound)
+    borders at most two faces, in opposite directions: the geodesic tracer needs a manifold,
+    oriented surface."""
+    faces = np.asarray(faces, dtype=np.int64)
+    directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    undirected, counts = np.unique(np.sort(directed, axis=1), axis=0, return_counts=True)
+    if (counts > 2).any():
+        raise DgpcError(f"not a manifold mesh: the edge {_edge(vertices, undirected, counts)} "
+                        f"borders {int(counts.max())} faces (at most 2; remove the extra "
+                        "faces)", source=source)
+    uniq, counts = np.unique(directed, axis=0, return_counts=True)
+    if (counts > 1).any():
+        raise DgpcError(f"the mesh cannot be oriented consistently (a Möbius strip?): the "
+                        f"edge {_edge(vertices, uniq, counts)} runs the same way in two "
+                        "faces", source=source)
+
+
+def _edge(vertices, edges, counts) -> str:
+    """The edge of ``edges`` with the largest count, by its end points."""
+    a, b = (vertices[i] for i in edges[np.argmax(counts)])
+    return "from ({}) to ({})".format(*(", ".join(f"{x:g}" for x in p) for p in (a, b)))
+
+
 def face_components(faces: np.ndarray) -> np.ndarray:
     """Label ``(t,)`` of the connected piece (faces sharing vertices) of every face."""
     faces = np.asarray(faces, dtype=np.int64)
@@ -184,9 +209,9 @@ def load_mesh(path: str | Path, *, pieces: str = "all") -> ReferenceMesh:
     vertices, faces = _parse(data, fmt, path)
     if len(faces) == 0 or vertices.ndim != 2 or vertices.shape[1] != 3:
         raise DgpcError("not a surface mesh: no faces", source=path)
-    bad = np.flatnonzero(~np.isfinite(vertices).all(axis=1))
+    bad = bad_rows(vertices)
     if bad.size:
-        raise DgpcError(f"vertex {int(bad[0]) + 1} has a non-finite coordinate "
+        raise DgpcError(f"vertex {int(bad[0]) + 1} has {coordinate_problem(vertices[bad[0]])} "
                         f"({bad.size} such vertices)", source=path)
     if faces.min() < 0 or faces.max() >= len(vertices):
         raise DgpcError("a face refers to a vertex that does not exist", source=path)
@@ -204,6 +229,7 @@ def load_mesh(path: str | Path, *, pieces: str = "all") -> ReferenceMesh:
     if len(faces) < 2:
         raise DgpcError(f"needs at least 2 non-degenerate faces, has {len(faces)} "
                         f"(of {n_raw} before cleaning)", source=path)
+    check_manifold(vertices, faces, path)
     log.info("%s: %d vertices, %d faces (%d dropped)", path, len(vertices), len(faces),
              n_raw - len(faces))
     vertices.setflags(write=False)

@@ -33,11 +33,12 @@ from ..errors import DgpcError
 from .artifact import (
     artifact_files,
     artifact_paths,
+    listed_path,
     load_envelope,
     read_listed,
     relative_input,
-    resolve_input,
 )
+from .coordinates import bad_rows, coordinate_problem
 from .obj import check_obj_objects, net_quads, parse_obj
 
 KIND = "mold"
@@ -218,7 +219,8 @@ def mold_files(stem: str | Path, *, profile: dict, units: str, profile_dxf: byte
 
 
 def _check_file(record: dict, json_path: Path, field: str) -> None:
-    read_listed(resolve_input(record, json_path), record["sha256"], json_path, field)
+    read_listed(listed_path(record["path"], json_path, field), record["sha256"], json_path,
+                field)
 
 
 def check_mold_data(data: dict, source: Path) -> None:
@@ -230,6 +232,11 @@ def check_mold_data(data: dict, source: Path) -> None:
         if got != size:
             raise DgpcError(f"data.profile.{key}: {got} values, expected {size} "
                             f"(data.rows = {m})", source=source)
+        values = np.asarray(data["profile"][key], dtype=np.float64).reshape(-1, 1)
+        bad = bad_rows(values)
+        if bad.size:
+            raise DgpcError(f"data.profile.{key}[{int(bad[0])}]: "
+                            f"{coordinate_problem(values[bad[0]])}", source=source)
     ids = set()
     for k, piece in enumerate(data["pieces"]):
         a, b = piece["rows"]
@@ -253,7 +260,7 @@ def check_mold_data(data: dict, source: Path) -> None:
 def _check_objs(data: dict, json_path: Path) -> None:
     """The mold OBJ (objects surface and sector, the sector's faces grouped by piece) and the
     panels OBJ (one object per net, its faces grouped by panel) against the JSON."""
-    path = resolve_input({"path": data["obj"]}, json_path)
+    path = listed_path(data["obj"], json_path, "data.obj")
     obj = parse_obj(read_listed(path, data["obj_sha256"], json_path, "data.obj"), path)
     m = data["rows"]
     check_obj_objects(obj, [("surface", m * data["surface"]["columns"]),
@@ -264,7 +271,7 @@ def _check_objs(data: dict, json_path: Path) -> None:
         raise DgpcError(f"the sector's groups {obj.objects[1].groups} are not the mold pieces "
                         f"{pieces} of data.pieces", source=path)
     record = data["files"]["panels_obj"]
-    path = resolve_input(record, json_path)
+    path = listed_path(record["path"], json_path, "data.files.panels_obj")
     obj = parse_obj(read_listed(path, record["sha256"], json_path, "data.files.panels_obj"),
                     path)
     check_obj_objects(obj, [(f"net{k + 1}", math.prod(net["shape"]))

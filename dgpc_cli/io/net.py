@@ -15,6 +15,7 @@ from .artifact import (
     read_listed,
 )
 from .atomic import write_files
+from .coordinates import bad_rows, coordinate_problem
 from .obj import format_net_obj, parse_net_obj
 from .units import DEFAULT_UNITS, stored, to_mm
 
@@ -73,10 +74,10 @@ def check_net_array(f, source) -> np.ndarray:
     if f.ndim != 3 or f.shape[2] != 3 or f.shape[0] < 2 or f.shape[1] < 2:
         raise DgpcError(f"f: a net is an (m, n, 3) array with m, n >= 2, got shape "
                         f"{tuple(f.shape)}", source=source)
-    bad = np.argwhere(~np.isfinite(f).all(axis=2))
+    bad = bad_rows(f.reshape(-1, 3))
     if bad.size:
-        u, v = (int(i) for i in bad[0])
-        raise DgpcError(f"f: vertex (u, v) = ({u}, {v}) has a non-finite coordinate",
+        u, v = divmod(int(bad[0]), f.shape[1])
+        raise DgpcError(f"f: vertex (u, v) = ({u}, {v}) has {coordinate_problem(f[u, v])}",
                         source=source)
     return f
 

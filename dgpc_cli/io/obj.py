@@ -9,6 +9,7 @@ import numpy as np
 
 from .. import __version__
 from ..errors import DgpcError
+from .coordinates import bad_rows, coordinate_problem
 
 
 def net_quads(m: int, n: int) -> np.ndarray:
@@ -62,11 +63,11 @@ def parse_net_obj(data: bytes, m: int, n: int, source: str | Path) -> np.ndarray
         raise DgpcError(f"{len(rows)} vertices, but the net is {m} x {n} = {m * n}",
                         source=source)
     f = np.array(rows, dtype=np.float64)
-    bad = np.flatnonzero(~np.isfinite(f).all(axis=1))
+    bad = bad_rows(f)
     if bad.size:
         k = int(bad[0])
-        raise DgpcError(f"vertex {k + 1} (u, v) = ({k // n}, {k % n}) has a non-finite "
-                        f"coordinate {f[k].tolist()}", source=source)
+        raise DgpcError(f"vertex {k + 1} (u, v) = ({k // n}, {k % n}) has "
+                        f"{coordinate_problem(f[k])}: {f[k].tolist()}", source=source)
     return f.reshape(m, n, 3)
 
 
@@ -158,10 +159,11 @@ def parse_obj(data: bytes, source: str | Path) -> ObjContents:
     if objects[0].vertices == 0 and not objects[0].groups and len(objects) > 1:
         objects.pop(0)
     vertices = np.array(rows, dtype=np.float64).reshape(-1, 3)
-    bad = np.flatnonzero(~np.isfinite(vertices).all(axis=1))
+    bad = bad_rows(vertices)
     if bad.size:
-        raise DgpcError(f"line {lines_of[int(bad[0])]}: vertex {int(bad[0]) + 1} has a "
-                        "non-finite coordinate", source=source)
+        k = int(bad[0])
+        raise DgpcError(f"line {lines_of[k]}: vertex {k + 1} has "
+                        f"{coordinate_problem(vertices[k])}", source=source)
     if len(used) != len(rows):
         k = min(set(range(1, len(rows) + 1)) - used)
         raise DgpcError(f"line {lines_of[k - 1]}: vertex {k} is used by no face or line",

@@ -28,10 +28,10 @@ from ..errors import DgpcError
 from .artifact import (
     artifact_files,
     artifact_paths,
+    listed_path,
     load_envelope,
     read_listed,
     relative_input,
-    resolve_input,
 )
 from .obj import check_obj_objects, parse_obj
 
@@ -89,17 +89,18 @@ class SheetsArtifact:
     status: dict
 
     def file(self, key: str) -> Path:
-        return resolve_input(self.data["files"][key], self.path)
+        return listed_path(self.data["files"][key]["path"], self.path, f"data.files.{key}")
 
 
 def _check_file(record: dict, json_path: Path, field: str) -> None:
-    read_listed(resolve_input(record, json_path), record["sha256"], json_path, field)
+    read_listed(listed_path(record["path"], json_path, field), record["sha256"], json_path,
+                field)
 
 
 def _check_obj(data: dict, json_path: Path) -> None:
     """The OBJ: one object per sheet (its id), in it a closed polyline for the sheet and one
     group with one polyline per part placed on it (the order of data.placements)."""
-    path = resolve_input({"path": data["obj"]}, json_path)
+    path = listed_path(data["obj"], json_path, "data.obj")
     obj = parse_obj(read_listed(path, data["obj_sha256"], json_path, "data.obj"), path)
     check_obj_objects(obj, [(s["id"], None) for s in data["sheets"]], path, "data.sheets")
     for k, o in enumerate(obj.objects):

@@ -32,6 +32,7 @@ from dgpc_cli.io.mesh import ReferenceMesh
 from dgpc_cli.metrics.coverage import coverage
 from dgpc_cli.metrics.degenerate import GPC_LIMIT, degeneracies
 from dgpc_cli.stages.init_mesh import MeshGrid, init_geodesic, init_project
+from dgpc_cli.stages.net_size import NetTooLarge
 
 log = logging.getLogger(__name__)
 
@@ -179,6 +180,8 @@ def choose(mesh: ReferenceMesh, domain: ReferenceMesh, method: str, *, base: str
     for cand in cands:
         try:
             grid = _build(domain, method, cand, size, extend_length)
+        except NetTooLarge:
+            raise
         except DgpcError as err:
             if explicit:
                 raise

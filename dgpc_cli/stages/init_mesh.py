@@ -35,6 +35,7 @@ from dgpc_cli.geodesics.tracing import (
 )
 from dgpc_cli.io.mesh import ReferenceMesh
 from dgpc_cli.io.net import NetArtifact
+from dgpc_cli.stages.net_size import check_net_size
 
 log = logging.getLogger(__name__)
 
@@ -78,6 +79,23 @@ def _check_count(count: int, what: str, option: str):
     if count < 3:
         raise DgpcError(f"the usable part of the mesh gives only {count} {what}; a net needs "
                         "at least 3 (lower --spacing)", source=option)
+
+
+def _check_size(cols: int | None, rows: int | None, spacing: float | None, across: float,
+                along: float) -> None:
+    """Refuse a net beyond the memory limit before its positions are made: ``cols`` columns
+    over the length ``across`` (or as many as fit at ``spacing``), ``rows`` rows over the length
+    ``along`` (or at ``spacing``, or square quads)."""
+    n = cols if cols is not None else across / spacing + 1
+    if rows is not None:
+        m = rows
+    elif spacing is not None:
+        m = along / spacing + 1
+    else:
+        m = along / (across / max(n - 1, 1)) + 1 if across > 0 else 1
+    source = "--spacing" if spacing is not None else "--rows/--cols"
+    check_net_size(m, n, source, "use a larger --spacing" if spacing is not None
+                   else "use fewer --rows or --cols")
 
 
 def rotated(d: np.ndarray, axis: np.ndarray, degrees: float) -> np.ndarray:
@@ -180,6 +198,7 @@ class _Fan:
         """Columns at ``t0..t1`` (``cols`` of them or at ``spacing``), their geodesics sampled at
         ``rows`` common arc lengths in ``[s0, s1]`` (default: square quads); ``(f, s, t)``."""
         want = cols if cols is not None else (DEFAULT_COLS if spacing is None else None)
+        _check_size(want, rows, spacing, t1 - t0, s1 - s0)
         t = _positions(t0, t1, want, spacing)
         _check_count(len(t), "columns", "--spacing")
         pts, fcs, u = _base_seeds(self.curve, t, self.normals)
@@ -319,6 +338,7 @@ def init_project(mesh: ReferenceMesh, *, direction=None, angle: float = 0.0,
 
     def make(x0, x1, y0, y1) -> MeshGrid | None:
         ncols = cols if cols is not None else (DEFAULT_COLS if spacing is None else None)
+        _check_size(ncols, rows, spacing, y1 - y0, x1 - x0)
         gy = _positions(y0, y1, ncols, spacing)
         want_r = rows
         if want_r is None and spacing is None:

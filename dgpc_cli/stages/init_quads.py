@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.coordinates import bad_rows, coordinate_problem
 from dgpc_cli.io.net import NetArtifact
 from dgpc_cli.metrics.degenerate import GPC_LIMIT, degeneracies
 from dgpc_cli.metrics.residuals import gpc_angle_defect_max
@@ -53,8 +54,10 @@ def read_quad_obj(path: Path) -> tuple[np.ndarray, np.ndarray]:
     V, Q = np.asarray(verts, dtype=float), np.asarray(quads, dtype=np.int64)
     if Q.min() < 0 or Q.max() >= len(V):
         raise DgpcError("a face refers to a vertex that does not exist", source=path)
-    if not np.isfinite(V).all():
-        raise DgpcError("a vertex has a non-finite coordinate", source=path)
+    bad = bad_rows(V)
+    if bad.size:
+        raise DgpcError(f"vertex {int(bad[0]) + 1} has {coordinate_problem(V[bad[0]])}",
+                        source=path)
     return V, Q
 
 

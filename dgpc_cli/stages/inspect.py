@@ -11,7 +11,7 @@ from dgpc_cli.core.layout import NetLayout
 from dgpc_cli.core.problem import Problem, constraint_error, mean_edge_length
 from dgpc_cli.core.solver import parse_weight
 from dgpc_cli.errors import DgpcError
-from dgpc_cli.io.artifact import resolve_input, sha256_file
+from dgpc_cli.io.artifact import recorded_file, resolve_input
 from dgpc_cli.io.net import NetArtifact
 from dgpc_cli.metrics.summary import net_metrics
 from dgpc_cli.mold.isometry import panel_error_summary
@@ -36,14 +36,12 @@ def recorded_reference(net: NetArtifact, json_path: Path):
     record = net.data.get("reference")
     if not record:
         return None
-    path = resolve_input(record, json_path)
-    if not path.is_file():
+    if isinstance(record, dict) and isinstance(record.get("path"), str) \
+            and not resolve_input(record, json_path).is_file():
         log.warning("%s: recorded reference %s is missing; no Hausdorff distance", json_path,
                     record["path"])
         return None
-    if record.get("sha256") and sha256_file(path) != record["sha256"]:
-        raise DgpcError(f"data.reference: {record['path']} changed since the net was written "
-                        "(sha256 differs)", source=json_path)
+    path = recorded_file(record, json_path, "data.reference")
     return load_mesh(path, pieces=net.reference_pieces)
 
 

@@ -30,6 +30,7 @@ from dgpc_cli.nesting.blf import Placement, Sheet, fill_sheets, inner_fit
 from dgpc_cli.nesting.drawing import mold_map_drawing, placed_part, sheet_drawing
 from dgpc_cli.nesting.geometry import Part, bounds, group_tolerance, prepare_parts, transform
 from dgpc_cli.nesting.strip import spyrrow_sheets
+from dgpc_cli.tolerances import tol as TOL
 
 log = logging.getLogger(__name__)
 
@@ -131,7 +132,18 @@ def nest_parts(flat_parts: list[dict], sheet: Sheet, rotations: list[float], *,
         raise DgpcError(f"{sheet.margin:g}: must be >= 0 mm", source="--margin")
     if engine not in ENGINES:
         raise DgpcError(f"{engine!r}: not one of {', '.join(ENGINES)}", source="--engine")
+    limit = TOL.max_coordinate
+    for option, value in (("--sheet", max(sheet.width, sheet.height)),
+                          ("--margin", sheet.margin), ("--spacing", sheet.spacing)):
+        if value > limit:
+            raise DgpcError(f"{value:g} mm is beyond {limit:g} mm, the largest length dgpc "
+                            "accepts", source=option)
     k = scale * mm_per_unit(units)
+    reach = k * max((float(np.max(np.abs(np.asarray(rec["outline"], float))))
+                     for rec in flat_parts), default=0.0)
+    if not reach <= limit:
+        raise DgpcError(f"{scale:g}: the parts scaled by it reach {reach:g} mm, beyond "
+                        f"{limit:g} mm, the largest length dgpc accepts", source="--scale")
     parts = prepare_parts(flat_parts, k, group_tolerance(sheet.spacing))
     check_fit(parts, sheet, rotations)
     if engine == "fill":

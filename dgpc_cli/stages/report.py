@@ -36,7 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-from dgpc_cli.io.artifact import resolve_input, sha256_file
+from dgpc_cli.io.artifact import listed_path, resolve_input, sha256_file
 from dgpc_cli.report.html import Header, index_html
 from dgpc_cli.report.render import png_bytes, style
 from dgpc_cli.report.words import counted
@@ -256,7 +256,8 @@ def _design_nets(mold, json_path: Path) -> list[np.ndarray]:
     from dgpc_cli.io.obj import parse_net_obj
 
     shapes = [tuple(x["shape"]) for x in mold.data["nets"]]
-    path = resolve_input(mold.data["files"]["panels_obj"], json_path)
+    path = listed_path(mold.data["files"]["panels_obj"]["path"], json_path,
+                       "data.files.panels_obj")
     total = sum(m * n for m, n in shapes)
     vertices = parse_net_obj(path.read_bytes(), total, 1, path).reshape(-1, 3)
     out, start = [], 0

@@ -22,6 +22,7 @@ from typing import NamedTuple
 import numpy as np
 
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.tolerances import tol as TOL
 
 #: Samples of a built-in profile (dense: the surface is the revolved polyline).
 BUILTIN_SAMPLES = 2001
@@ -237,6 +238,12 @@ def read_profile_csv(path: str | Path) -> Profile:
     if bad.any():
         k = int(np.argmax(bad))
         raise DgpcError(f"line {lines[k]}: non-finite value (r = {r[k]}, h = {h[k]})", path)
+    far = np.any(np.abs(values) > TOL.max_coordinate, axis=1)
+    if far.any():
+        k = int(np.argmax(far))
+        raise DgpcError(f"line {lines[k]}: r = {r[k]:g}, h = {h[k]:g} beyond "
+                        f"±{TOL.max_coordinate:g} (the largest coordinate dgpc accepts, in the "
+                        "profile's unit)", path)
     if np.any(r < 0):
         k = int(np.argmax(r < 0))
         raise DgpcError(f"line {lines[k]}: negative radius r = {r[k]:g}; r is the distance to "

@@ -28,11 +28,18 @@ MIN_ALONG = 200
 MAX_ALONG = 2000
 
 
+#: The largest |twist|, radians (159 turns): the angles θ = twist·s/s_total then keep 13 digits.
+MAX_TWIST = 1000.0
+
+
 def _check_span_twist(span_deg: float, twist: float) -> None:
     if not (math.isfinite(span_deg) and 0.0 < span_deg <= 360.0):
         raise DgpcError(f"the span must be in (0, 360] degrees, got {span_deg:g}", "--span")
     if not math.isfinite(twist):
         raise DgpcError(f"the twist must be finite, got {twist}", "--twist")
+    if abs(twist) > MAX_TWIST:
+        raise DgpcError(f"the twist must be at most {MAX_TWIST:g} radians either way (beyond "
+                        f"it the angles lose their precision), got {twist:g}", "--twist")
 
 
 def revolution_net(profile: Profile, m: int, n: int, *, span_deg: float = 90.0,
