@@ -1,9 +1,10 @@
 """The solver's convergence: the history ``dgpc optimize`` records in ``status.steps`` drawn as
 a plot (the HTML page shows it instead of rows of numbers).
 
-Every handle step is a guided-projection run; its ``history`` holds per iteration the paper's
+Every handle step, relaxation round and final projection is a guided-projection run; its
+``history`` holds per iteration the paper's
 R and the residual norm of every term. The plot puts the runs one after the other on the
-iteration axis (a dotted line where a step begins), R thick and every term thin, on a
+iteration axis (a dotted line where a run begins), R thick and every term thin, on a
 logarithmic scale (zeros are left out: a log scale has no room for them).
 """
 
@@ -48,7 +49,7 @@ def convergence_figure(status: dict, *, title: str):
             for t in terms:
                 per_term[t].append(h.get("residuals", {}).get(t))
     fig = figure(*CONVERGENCE_SIZE)
-    ax = fig.add_axes((0.1, 0.13, 0.62, 0.75))
+    ax = fig.add_axes((0.1, 0.17, 0.62, 0.72))
     cmap = colormaps["tab10"]
     for k, t in enumerate(terms):
         ax.plot(x, _positive(per_term[t]), lw=0.8, color=cmap(k % 10), label=t,
@@ -57,8 +58,9 @@ def convergence_figure(status: dict, *, title: str):
     for start in starts[1:]:
         ax.axvline(start - 0.5, color="0.6", lw=0.6, ls=":")
     ax.set_yscale("log")
-    what = ("one handle step" if len(steps) == 1 else
-            f"all {len(steps)} handle steps in a row; dotted: a step begins")
+    what = ("one solver run" if len(steps) == 1 else
+            f"{len(steps)} solver runs in a row: handle steps, relaxation rounds,\n"
+            "final projection; dotted: a run begins")
     ax.set_xlabel(f"iteration ({what})", fontsize=LABEL_PT)
     ax.set_ylabel("residual norm (mean edge 1)", fontsize=LABEL_PT)
     ax.grid(True, which="major", lw=0.3)
