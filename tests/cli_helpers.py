@@ -9,7 +9,8 @@ from click.testing import CliRunner
 
 from dgpc_cli.cli.main import cli
 from dgpc_cli.core.problem import mean_edge_length
-from dgpc_cli.io.net import read_net, write_net
+from dgpc_cli.io.net import NetArtifact, read_net, write_net
+from dgpc_cli.surfaces.minding import minding_bend
 
 
 def dgpc(*args, expect=0):
@@ -32,3 +33,16 @@ def add_noise(src, dst, fraction, seed=0):
     net.f = net.f + fraction * mean_edge_length(net.f) * rng.standard_normal(net.f.shape)
     write_net(dst, net)
     return dst
+
+
+def bent_catenoid_chain(d):
+    """In folder ``d``: a 9×7 catenoid ring bent by Minding (λ 0.7) as ``bent``, its ``mold``,
+    ``strips``, ``flat`` and ``sheets`` (700×500 mm, 100 mm per unit): one artifact of
+    every kind a report draws."""
+    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 9, "--cols", 7,
+         "--span", 360, "-o", d / "cat")
+    write_net(d / "bent", NetArtifact(f=minding_bend(read_net(d / "cat").f, 0.7)))
+    dgpc("extract-mold", d / "bent", "-o", d / "mold")
+    dgpc("planarize-strips", d / "bent", "-o", d / "strips")
+    dgpc("unfold", d / "strips", "-o", d / "flat")
+    dgpc("nest", d / "flat", "--sheet", "700x500", "--scale", 100, "-o", d / "sheets")

@@ -7,15 +7,14 @@ import json
 
 import numpy as np
 import pytest
-from cli_helpers import dgpc
+from cli_helpers import bent_catenoid_chain, dgpc
 from PIL import Image
 
-from dgpc_cli.io.net import NetArtifact, read_net, write_net
+from dgpc_cli.io.net import read_net
 from dgpc_cli.report.camera import box_corners, model_frame, standard_views
 from dgpc_cli.report.clairaut import FLOOR
 from dgpc_cli.report.render import style
 from dgpc_cli.stages.report import PAGES, SHEET_LEGEND, _layer_legend
-from dgpc_cli.surfaces.minding import minding_bend
 
 
 @pytest.fixture(scope="module")
@@ -29,13 +28,7 @@ def arts(tmp_path_factory):
          "--span", 120, "-o", d / "meridian")
     dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 9, "--cols", 7,
          "--span", 120, "--twist", 0.3, "--units", "ft", "-o", d / "feet")
-    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 9, "--cols", 7,
-         "--span", 360, "-o", d / "cat")
-    write_net(d / "bent", NetArtifact(f=minding_bend(read_net(d / "cat").f, 0.7)))
-    dgpc("extract-mold", d / "bent", "-o", d / "mold")
-    dgpc("planarize-strips", d / "bent", "-o", d / "strips")
-    dgpc("unfold", d / "strips", "-o", d / "flat")
-    dgpc("nest", d / "flat", "--sheet", "700x500", "--scale", 100, "-o", d / "sheets")
+    bent_catenoid_chain(d)
     return d
 
 

@@ -6,10 +6,10 @@ import re
 
 import numpy as np
 import pytest
-from cli_helpers import dgpc
+from cli_helpers import bent_catenoid_chain, dgpc
 from PIL import Image
 
-from dgpc_cli.io.net import NetArtifact, read_net, write_net
+from dgpc_cli.io.net import read_net
 from dgpc_cli.report.clairaut import CLAIRAUT_SIZE
 from dgpc_cli.report.convergence import CONVERGENCE_SIZE
 from dgpc_cli.report.mold import PAIRING_SIZE, PIECES_SIZE, PROFILE_SIZE
@@ -40,13 +40,7 @@ def sample(tmp_path_factory):
         {"handles": [{"index": list(i), "target": g[i].tolist()} for i in idx]}))
     dgpc("optimize", d / "hs0", "--mode", "isometric", "--handles", d / "handles.json",
          "--steps", 2, "-o", d / "iso")
-    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 9, "--cols", 7,
-         "--span", 360, "-o", d / "cat")
-    write_net(d / "bent", NetArtifact(f=minding_bend(read_net(d / "cat").f, 0.7)))
-    dgpc("planarize-strips", d / "bent", "-o", d / "strips")
-    dgpc("unfold", d / "strips", "-o", d / "flat")
-    dgpc("extract-mold", d / "bent", "-o", d / "mold")
-    dgpc("nest", d / "flat", "--sheet", "700x500", "--scale", 100, "-o", d / "sheets")
+    bent_catenoid_chain(d)
     return d
 
 

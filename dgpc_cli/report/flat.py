@@ -80,7 +80,6 @@ def _grid_shape(count: int, aspect: float) -> tuple[int, int, float]:
 def overlay_figure(parts: list[dict], classes: list[dict], units: str):
     """All parts aligned on their class representatives, one cell (axes gid ``class-<id>``)
     per congruence class."""
-    from matplotlib.lines import Line2D
 
     by_id = {p["id"]: p for p in parts}
     drawings = []
@@ -123,11 +122,19 @@ def overlay_figure(parts: list[dict], classes: list[dict], units: str):
                  "overlaid on "
                  f"its representative (one scale, length of the longest "
                  f"{span:.4g} {units})", fontsize=TITLE_PT - 1, y=0.995)
-    fig.legend(handles=[Line2D([], [], color=CUT, lw=1, label="outlines (cut)"),
-                        Line2D([], [], color=SCORE, lw=1, label="rulings (score)")],
-               loc="upper right", bbox_to_anchor=(0.995, 1.0 - 0.3 / H), ncol=2,
-               fontsize=SMALL_PT, frameon=False)
+    _cut_score_legend(fig, H, "outlines (cut)", "rulings (score)")
     return fig
+
+
+def _cut_score_legend(fig, height: float, cut: str, score: str) -> None:
+    """The legend of the CUT and SCORE line colours, top right of a figure ``height`` inches
+    tall."""
+    from matplotlib.lines import Line2D
+
+    fig.legend(handles=[Line2D([], [], color=CUT, lw=1, label=cut),
+                        Line2D([], [], color=SCORE, lw=1, label=score)],
+               loc="upper right", bbox_to_anchor=(0.995, 1.0 - 0.3 / height), ncol=2,
+               fontsize=SMALL_PT, frameon=False)
 
 
 def _shelves(sizes: np.ndarray, width: float, gap: float) -> tuple[np.ndarray, float, float]:
@@ -150,7 +157,6 @@ def _shelves(sizes: np.ndarray, width: float, gap: float) -> tuple[np.ndarray, f
 def layout_figure(parts: list[dict], units: str):
     """The parts in rows like a sheet (:func:`_shelves`), each turned across the page, with
     rulings, id and class (texts of gid ``part-label:<id>``)."""
-    from matplotlib.lines import Line2D
 
     turned = []
     for p in parts:
@@ -197,8 +203,5 @@ def layout_figure(parts: list[dict], units: str):
             fontsize=LABEL_PT)
     fig.suptitle(f"{len(parts)} developed parts laid out like a sheet (in id order), "
                  f"with rulings, id and class", fontsize=TITLE_PT - 1, y=0.995)
-    fig.legend(handles=[Line2D([], [], color=CUT, lw=1, label="outline (cut)"),
-                        Line2D([], [], color=SCORE, lw=1, label="ruling (score)")],
-               loc="upper right", bbox_to_anchor=(0.995, 1.0 - 0.3 / fig_h), ncol=2,
-               fontsize=SMALL_PT, frameon=False)
+    _cut_score_legend(fig, fig_h, "outline (cut)", "ruling (score)")
     return fig
