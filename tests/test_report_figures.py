@@ -282,3 +282,31 @@ def test_uncovered_reference_shows_orange_with_the_metrics_share():
     (legend,) = fig.legends
     labels = [t.get_text() for t in legend.get_texts()]
     assert f"reference, covered ({100 * metric['area_fraction']:.1f} %)" in labels
+
+
+# --------------------------------------------------------------------------------------------
+# Flat parts
+
+
+def test_every_overlaid_outline_lies_inside_its_cell():
+    """Each congruence class's cell shows its outlines whole: a part as tall as the cell lost
+    its top edge to the axes' frame (the timber wall's long, slim strips)."""
+    from dgpc_cli.report.flat import overlay_figure
+
+    t = np.linspace(0.0, 1.0, 20)
+    A = np.column_stack([6.0 * t, 0.02 * np.sin(np.pi * t)])          # 6 m × 0.35 m strips
+    B = A[::-1] + [0.3, 0.35]
+    parts = [{"id": f"S{k}", "class": f"C{k}", "outline": np.vstack([A, B]).tolist(),
+              "score": [[A[i].tolist(), B[-1 - i].tolist()] for i in range(1, 19)],
+              "alignment": {"matrix": np.eye(2).tolist(), "translation": [0.0, 0.0]}}
+             for k in range(3)]
+    classes = [{"id": f"C{k}", "quantity": 1, "representative": f"S{k}",
+                "members": [f"S{k}"], "max_relative_error": 0.0} for k in range(3)]
+    fig = overlay_figure(parts, classes, "m")
+    cells = [a for a in fig.axes if (a.get_gid() or "").startswith("class-")]
+    assert len(cells) == 3
+    for ax in cells:
+        (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+        for line in ax.lines:
+            x, y = line.get_data()
+            assert x0 < np.min(x) and np.max(x) < x1 and y0 < np.min(y) and np.max(y) < y1

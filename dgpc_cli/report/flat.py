@@ -104,13 +104,16 @@ def overlay_figure(parts: list[dict], classes: list[dict], units: str):
         ax = fig.add_axes((left, bottom, (width - 0.1) / W, (cell_h - 0.36) / H))
         ax.set_gid(f"class-{cls['id']}")
         for outline, segs in zip(outlines, scores, strict=True):
-            ax.plot(*_closed(outline).T, lw=0.7, color=CUT, alpha=0.6)
+            ax.plot(*_closed(outline).T, lw=1.0, color=CUT, alpha=0.8)
             for seg in segs:
-                ax.plot(*seg.T, lw=0.4, color=SCORE, alpha=0.4)
+                ax.plot(*seg.T, lw=0.6, color=SCORE, alpha=0.6)
         allp = np.concatenate(outlines)
         mid = 0.5 * (allp.min(axis=0) + allp.max(axis=0))
-        half_w = 0.52 * span
-        half_h = half_w * (cell_h - 0.36) / (width - 0.1)
+        ratio = (cell_h - 0.36) / (width - 0.1)           # the axes' height over width
+        # the longest part fills the width, and no part is taller than the axes (a part whose
+        # height fills the cell would lose its top edge to the axes' frame)
+        half_h = max(0.52 * span * ratio, 0.52 * float(np.ptp(allp[:, 1])))
+        half_w = half_h / ratio
         ax.set_xlim(mid[0] - half_w, mid[0] + half_w)
         ax.set_ylim(mid[1] - half_h, mid[1] + half_h)
         ax.set_aspect("equal", adjustable="box")
