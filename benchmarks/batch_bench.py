@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import logging
 import subprocess
 import sys
 import tempfile
@@ -53,8 +52,9 @@ def round_trip(n: int = 100) -> float:
     """Mean seconds of an empty task's submit → result on a 1-worker local cluster."""
     from distributed import Client, LocalCluster
 
-    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, host="127.0.0.1",
-                      dashboard_address=None, silence_logs=logging.ERROR) as cluster, \
+    from dgpc_cli.batch.cluster import local_cluster_options
+
+    with LocalCluster(**local_cluster_options(1)) as cluster, \
             Client(cluster) as client:
         client.submit(_noop, -1, pure=False).result()          # warm up
         start = time.perf_counter()

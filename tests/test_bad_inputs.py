@@ -346,7 +346,7 @@ LISTED = {
 def _listed_cases():
     for kind, (fields, commands) in sorted(LISTED.items()):
         for field, suffix in fields:
-            for how in ("absolute", "dotdot"):
+            for how in ("absolute", "dotdot", "symlink"):
                 yield pytest.param(kind, field, suffix, how, commands,
                                    id=f"{kind}-{'.'.join(field)}-{how}")
 
@@ -355,12 +355,14 @@ def _listed_cases():
 def test_a_listed_file_outside_the_artifacts_folder(sample, tmp_path, kind, field, suffix,
                                                     how, commands):
     """A listed file moved out of the artifact's folder, its path in the JSON an absolute one
-    or one with '..', its sha256 still matching: exit 1, one line naming the JSON and field."""
+    or one with '..' (or the JSON unchanged and a symbolic link left in the file's place), its
+    sha256 still matching: exit 1, one line naming the JSON and field."""
     art, elsewhere = tmp_path / "art", tmp_path / "elsewhere"
     art.mkdir()
     elsewhere.mkdir()
     moved = elsewhere / f"bad{suffix}"
-    target = str(moved) if how == "absolute" else f"../elsewhere/bad{suffix}"
+    target = {"absolute": str(moved), "dotdot": f"../elsewhere/bad{suffix}",
+              "symlink": f"bad{suffix}"}[how]
 
     def point_out(doc):
         record = doc["data"]
@@ -370,13 +372,16 @@ def test_a_listed_file_outside_the_artifacts_folder(sample, tmp_path, kind, fiel
 
     bad = copy_artifact(sample / f"{kind}.json", art, "bad", point_out)
     (art / f"bad{suffix}").rename(moved)
+    if how == "symlink":
+        (art / f"bad{suffix}").symlink_to(moved)
     name = ".".join(("data", *(field[:-1] if field[-1] == "path" else field)))
     for command in commands:
         args = [str(a).format(d=sample, x=bad) for a in command]
         out = [] if args[0] == "inspect" else ["-o", tmp_path / "out"]
         result = run_bad([sample, tmp_path], [*args, *out], 1, "bad.json", name, target)
         assert result.stdout == ""
-        assert ("absolute" if how == "absolute" else "'..'") in result.stderr
+        assert {"absolute": "absolute", "dotdot": "'..'",
+                "symlink": "symbolic link"}[how] in result.stderr
 
 
 @pytest.fixture(scope="module")
@@ -450,6 +455,20 @@ def test_a_net_beyond_the_memory_limit_is_refused(tmp_path, args, option):
     result = run_bad([tmp_path], ["init", *args, "-o", tmp_path / "big"], 1, option,
                      "memory", "beyond the limit of 4 GiB")
     assert result.stdout == "" and not any(tmp_path.iterdir())
+
+
+def test_optimize_and_from_quads_beyond_the_memory_limit_are_refused(sample, tmp_path):
+    """optimize estimates its memory from the net's shape before reading its OBJ (6 KiB a
+    vertex); --from-quads counts the OBJ's vertices before parsing it."""
+    big = copy_artifact(sample / "cat.json", tmp_path, "big",
+                        lambda doc: doc["data"].update(shape=[900, 900]))
+    result = run_bad([tmp_path], ["optimize", big, "--mode", "revolution", "-o",
+                                  tmp_path / "out"], 1, "big.json", "revolution", "900 × 900", "memory",
+                     "beyond the limit of 4 GiB")
+    assert result.stdout == ""
+    (tmp_path / "q.obj").write_bytes(b"v 0 0 0\n" * 2_200_000)
+    run_bad([tmp_path], ["init", "--from-quads", tmp_path / "q.obj", "-o", tmp_path / "out"],
+            1, "q.obj", "2200000 vertices", "beyond the limit of 4 GiB")
 
 
 def test_the_memory_limit():

@@ -11,7 +11,6 @@ few seconds per part.
 from __future__ import annotations
 
 import json
-import logging
 import os
 import shutil
 import subprocess
@@ -24,6 +23,7 @@ import pytest
 from cli_helpers import dgpc
 from click.testing import CliRunner
 
+from dgpc_cli.batch.cluster import local_cluster_options
 from dgpc_cli.batch.summary import exit_code
 from dgpc_cli.cli.main import cli
 from dgpc_cli.io.flat import read_flat
@@ -124,8 +124,7 @@ def cluster():
     """A LocalCluster of 2 single-threaded worker processes on the loopback address."""
     from distributed import LocalCluster
 
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
-                      dashboard_address=None, silence_logs=logging.ERROR) as c:
+    with LocalCluster(**local_cluster_options(2)) as c:
         yield c
 
 

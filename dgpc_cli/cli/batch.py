@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import logging
 import os
-import warnings
 from pathlib import Path
 
 import click
@@ -75,12 +74,10 @@ def _client(scheduler: str | None, workers: int | None):
                             source="--scheduler") from None
         return client, None, {"scheduler": scheduler,
                               "workers": len(client.scheduler_info()["workers"])}
+    from dgpc_cli.batch.cluster import local_cluster_options
+
     n = workers or os.cpu_count() or 1
-    with warnings.catch_warnings():     # the scheduler's HTTP port taken: it takes another
-        warnings.simplefilter("ignore", UserWarning)
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                               host="127.0.0.1", dashboard_address=None,
-                               silence_logs=logging.ERROR)
+    cluster = LocalCluster(**local_cluster_options(n))
     return Client(cluster), cluster, {"scheduler": "local", "workers": n}
 
 

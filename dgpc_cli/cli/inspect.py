@@ -8,6 +8,7 @@ import click
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import KINDS, artifact_paths, dumps_json
+from dgpc_cli.io.journal import finish_interrupted
 from dgpc_cli.io.jsonable import read_json
 from dgpc_cli.io.net import read_net
 from dgpc_cli.metrics.clairaut import parse_axis
@@ -81,6 +82,7 @@ INSPECTORS.update(laths=_inspect_laths)
 
 
 def artifact_kind(json_path: Path) -> str:
+    finish_interrupted(json_path)
     doc = read_json(json_path)
     kind = doc.get("kind") if isinstance(doc, dict) else None
     if kind not in KINDS:

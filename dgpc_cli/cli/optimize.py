@@ -15,7 +15,13 @@ from dgpc_cli.core.solver import Schedule
 from dgpc_cli.core.solver.linear import BACKENDS
 from dgpc_cli.errors import DgpcError, NotConverged
 from dgpc_cli.geodesics.extension import fit_surface
-from dgpc_cli.io.artifact import artifact_paths, file_input, recorded_file, resolve_input
+from dgpc_cli.io.artifact import (
+    artifact_paths,
+    file_input,
+    load_envelope,
+    recorded_file,
+    resolve_input,
+)
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.handles import read_handles
 from dgpc_cli.io.mesh import load_mesh
@@ -24,6 +30,7 @@ from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.stages.inspect import summarize
 from dgpc_cli.stages.modes import MODES, RELAX, SOFT, describe_weights, mode_weights
+from dgpc_cli.stages.net_size import OPTIMIZE_BYTES_PER_VERTEX, check_net_size
 from dgpc_cli.stages.optimize import boundary_vertices, judge, optimize_net
 from dgpc_cli.stages.polish import polish_weights
 from dgpc_cli.tolerances import tol as TOL
@@ -111,6 +118,10 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
         raise click.UsageError("give --reference or --no-reference, not both")
     json_path, _ = artifact_paths(stem)
     check_writable(output, force)
+    m, n = load_envelope(json_path, "net")["data"]["shape"]
+    check_net_size(m, n, str(json_path), "optimize a coarser net (init --rows/--cols)",
+                   per_vertex=OPTIMIZE_BYTES_PER_VERTEX[mode],
+                   what=f"optimizing ({mode}) a net of")
     net = read_net(stem)
     mesh = _reference(net, json_path, reference, mode, keep=not no_reference)
     if mesh is None:  # the terms that need a reference are off, and the record says so

@@ -1,5 +1,7 @@
 """``OutputPath``: the click type of every ``-o``. An empty path, or a stem without a file
-name, is a usage error (exit 2) naming the option."""
+name, is a usage error (exit 2) naming the option. The output's lock is taken as soon as the
+path is parsed and held until the command ends: a second process writing the same stem is
+refused at once (exit 1, :mod:`dgpc_cli.io.lock`)."""
 
 from __future__ import annotations
 
@@ -7,6 +9,8 @@ import os
 from pathlib import Path
 
 import click
+
+from dgpc_cli.io.lock import output_lock
 
 
 class OutputPath(click.Path):
@@ -27,4 +31,7 @@ class OutputPath(click.Path):
             if not self.folder and (text.endswith(("/", os.sep)) or last in ("", ".", "..")):
                 self.fail(f"{text!r} has no file name (e.g. out/net).",
                           param, ctx)
-        return super().convert(value, param, ctx)
+        path = super().convert(value, param, ctx)
+        if ctx is not None and not getattr(ctx, "resilient_parsing", False):
+            ctx.with_resource(output_lock(path))
+        return path

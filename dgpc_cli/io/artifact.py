@@ -10,6 +10,7 @@ from typing import Any
 
 from .. import __version__
 from ..errors import DgpcError
+from .journal import finish_interrupted
 from .jsonable import load_schema, read_json, schema_exists, to_jsonable, validate
 
 #: Version 2: every artifact records its length unit, ``data.units`` (:mod:`.units`).
@@ -109,8 +110,8 @@ def recorded_file(record: Any, json_path: str | Path, field: str) -> Path:
 def listed_path(text: Any, json_path: str | Path, field: str) -> Path:
     """The path of a file that the artifact ``json_path`` lists under ``field`` (its OBJ, a
     DXF, CSV or PNG): relative to the artifact's folder and inside it. An absolute path or one
-    with a ``..`` step is a DgpcError naming the artifact and ``field`` (a listed file is never
-    looked for elsewhere)."""
+    with a ``..`` step, or a symbolic link whose target lies outside the folder, is a DgpcError
+    naming the artifact and ``field`` (a listed file is never looked for elsewhere)."""
     if not isinstance(text, str) or not text or text in (".", "./"):
         raise DgpcError(f"{field}: {text!r} is not a file name", source=json_path)
     posix, windows = PurePosixPath(text), PureWindowsPath(text)
@@ -120,7 +121,13 @@ def listed_path(text: Any, json_path: str | Path, field: str) -> Path:
     if ".." in posix.parts or ".." in windows.parts:
         raise DgpcError(f"{field}: {text!r} leads out of the artifact's folder ('..'); the "
                         "files an artifact lists lie in its own folder", source=json_path)
-    return Path(json_path).resolve().parent / posix
+    folder = Path(json_path).resolve().parent
+    path = folder / posix
+    if not path.resolve().is_relative_to(folder):
+        raise DgpcError(f"{field}: {text!r} is a symbolic link that leads out of the "
+                        "artifact's folder; the files an artifact lists lie in its own folder",
+                        source=json_path)
+    return path
 
 
 def check_listed_paths(doc: dict, json_path: str | Path) -> None:
@@ -253,8 +260,10 @@ def validate_envelope(doc: Any, kind: str, source: str | Path) -> None:
 
 
 def load_envelope(path: str | Path, kind: str) -> dict:
-    """Read and validate the JSON envelope of a ``kind`` artifact; ``path`` may be a stem."""
+    """Read and validate the JSON envelope of a ``kind`` artifact; ``path`` may be a stem. A
+    write of it interrupted after its commit is finished first (:mod:`.journal`)."""
     json_path, _ = artifact_paths(path)
+    finish_interrupted(json_path)
     doc = read_json(json_path)
     validate_envelope(doc, kind, json_path)
     check_listed_paths(doc, json_path)

@@ -1,16 +1,25 @@
-"""All-or-nothing writing of several files (SPEC §3: temp file + rename, nothing partial)."""
+"""All-or-nothing writing of several files (SPEC §3: temp files, one commit, renames; nothing
+partial, never a mix of an old and a new set: :mod:`.journal`)."""
 
 from __future__ import annotations
 
 import logging
 import os
 import secrets
-import tempfile
 from collections.abc import Iterable
 from pathlib import Path
 
 from ..errors import DgpcError
 from .artifact import listed_files
+from .journal import (
+    commit,
+    finish_interrupted,
+    fsync_dir,
+    journal_path,
+    manifest_of,
+    remove_leftovers,
+    write_temp,
+)
 
 log = logging.getLogger(__name__)
 
@@ -26,22 +35,6 @@ def _check_targets(paths: list[Path], force: bool) -> None:
             raise DgpcError("already exists; use --force to overwrite", source=path)
 
 
-def _write_temp(path: Path, data: bytes, mode: int) -> Path:
-    """Write ``data`` to a hidden temp file beside ``path`` (flushed and fsynced)."""
-    fd, name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    tmp = Path(name)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.chmod(tmp, mode)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
-    return tmp
-
-
 def _backup(path: Path) -> Path | None:
     """Hard link of an existing target so that a failed batch can restore it (None if absent)."""
     if not path.exists():
@@ -53,19 +46,6 @@ def _backup(path: Path) -> Path | None:
         log.debug("no backup of %s (hard links unsupported)", path)
         return None
     return name
-
-
-def _fsync_dir(directory: Path) -> None:
-    try:
-        fd = os.open(directory, os.O_RDONLY)
-    except OSError:
-        return
-    try:
-        os.fsync(fd)
-    except OSError:
-        pass
-    finally:
-        os.close(fd)
 
 
 def _stale_files(targets: list[Path], replaces: Iterable[Path]) -> list[Path]:
@@ -102,7 +82,14 @@ def write_files(files: dict[Path, bytes], *, force: bool = False,
     longer layout) and ``replaces`` (e.g. the figures an earlier report linked).
     """
     items = [(Path(p), bytes(d)) for p, d in files.items()]
-    _check_targets([p for p, _ in items], force)
+    if not items:
+        return
+    targets = [p for p, _ in items]
+    journal = journal_path(manifest_of(targets))
+    if journal.parent.is_dir():
+        finish_interrupted(manifest_of(targets))
+        remove_leftovers(targets)
+    _check_targets(targets, force)
     stale = _stale_files([p for p, _ in items], replaces) if force else []
     umask = os.umask(0)
     os.umask(umask)
@@ -115,9 +102,11 @@ def write_files(files: dict[Path, bytes], *, force: bool = False,
     try:
         for path, data in items:
             current = path
-            temps.append(_write_temp(path, data, mode))
+            temps.append(write_temp(path, data, mode))
         for path in (p for p, _ in items):
             backups[path] = _backup(path)
+        commit(journal, [(t, p) for t, (p, _) in zip(temps, items, strict=True)],
+                stale + [b for b in backups.values() if b is not None])
         for (path, _), tmp in zip(items, temps, strict=True):
             current = path
             os.replace(tmp, path)
@@ -133,6 +122,7 @@ def write_files(files: dict[Path, bytes], *, force: bool = False,
         for bak in backups.values():
             if bak is not None:
                 bak.unlink(missing_ok=True)
+        journal.unlink(missing_ok=True)
         if isinstance(e, OSError):
             raise DgpcError(f"cannot write: {e.strerror or e}", source=current) from e
         raise
@@ -145,8 +135,9 @@ def write_files(files: dict[Path, bytes], *, force: bool = False,
         except OSError as e:
             log.warning("%s: stale file of the previous output not removed: %s", path,
                         e.strerror or e)
+    journal.unlink(missing_ok=True)
     if stale:
         log.debug("removed %s", ", ".join(str(p) for p in stale))
     for directory in {p.parent for p, _ in items}:
-        _fsync_dir(directory)
+        fsync_dir(directory)
     log.debug("wrote %s", ", ".join(str(p) for p, _ in items))

@@ -14,7 +14,15 @@ from dgpc_cli.errors import DgpcError
 
 #: Estimated memory per net vertex while a net is made and written, bytes.
 BYTES_PER_VERTEX = 2048
-#: The largest estimate ``init`` accepts, bytes (about 2.1 million vertices, 1448 × 1448).
+#: Estimated memory per net vertex while ``optimize`` runs, bytes, by mode: measured peaks
+#: (161² and 321² sphere-zone nets, 3 iterations) grow by 2.7 KiB per vertex in revolution
+#: mode and by 47–56 KiB in the fit, developable and isometric modes (the factorization of
+#: their normal equations fills in), on top of about 0.09 GiB.
+OPTIMIZE_BYTES_PER_VERTEX = {"revolution": 8 * 2**10, "fit": 64 * 2**10,
+                             "developable": 64 * 2**10, "isometric": 64 * 2**10}
+#: The largest estimate ``init`` and ``optimize`` accept, bytes (about 2.1 million vertices,
+#: 1448 × 1448, for ``init``; for ``optimize`` 524,288 vertices, 724 × 724, in revolution
+#: mode and 65,536, 256 × 256, in the others).
 MAX_NET_BYTES = 4 * 2**30
 
 
@@ -23,10 +31,10 @@ class NetTooLarge(DgpcError):
     curve or direction it is tried on."""
 
 
-def net_bytes(m: float, n: float) -> float:
+def net_bytes(m: float, n: float, per_vertex: int = BYTES_PER_VERTEX) -> float:
     """Estimated memory of making an ``m × n`` net, bytes (a float: counts estimated from a
     tiny spacing may be far beyond any integer size)."""
-    return float(m) * float(n) * BYTES_PER_VERTEX
+    return float(m) * float(n) * per_vertex
 
 
 def _size(nbytes: float) -> str:
@@ -42,13 +50,16 @@ def _count(x: float) -> str:
     return f"{x:.0f}" if x < 1e9 else f"{x:.3g}"
 
 
-def check_net_size(m: float, n: float, source: str, hint: str) -> None:
-    """DgpcError naming ``source`` (the option that set the size) when an ``m × n`` net would
-    need more than :data:`MAX_NET_BYTES`; ``hint`` says what to change."""
-    need = net_bytes(m, n)
+def check_net_size(m: float, n: float, source: str, hint: str, *,
+                   per_vertex: int = BYTES_PER_VERTEX, what: str = "a net of") -> None:
+    """DgpcError naming ``source`` (the option or file that set the size) when an ``m × n``
+    net would need more than :data:`MAX_NET_BYTES` at ``per_vertex`` bytes a vertex
+    (``optimize``: :data:`OPTIMIZE_BYTES_PER_VERTEX` of its mode); ``hint`` says what to
+    change."""
+    need = net_bytes(m, n, per_vertex)
     if need <= MAX_NET_BYTES and math.isfinite(need):
         return
-    raise NetTooLarge(f"a net of {_count(m)} × {_count(n)} vertices would need {_size(need)} "
-                    f"({BYTES_PER_VERTEX} bytes per vertex), beyond the limit of "
-                    f"{MAX_NET_BYTES / 2**30:g} GiB ({MAX_NET_BYTES // BYTES_PER_VERTEX} "
-                    f"vertices); {hint}", source=source)
+    size = f"{_count(m)} × {_count(n)} vertices" if n != 1 else f"{_count(m)} vertices"
+    raise NetTooLarge(f"{what} {size} would need {_size(need)} ({per_vertex} bytes per "
+                      f"vertex), beyond the limit of {MAX_NET_BYTES / 2**30:g} GiB "
+                      f"({MAX_NET_BYTES // per_vertex} vertices); {hint}", source=source)
