@@ -6,7 +6,8 @@ Runs, in one process tree and one run (so the noisy machine cancels out of the r
 * the commands of the pipelines' stages, each timed as a whole and with its iterations (a
   deterministic count) beside the figure before the drag and stopping-rule changes:
   a 21×21 fit to a bowling pin, the demo's isometric optimize (the timber wall, 21×13, its
-  samples handles), the felt's developable fit (41×25), a 4,797-vertex (123×39) fit;
+  samples handles), the felt's developable fit (41×25), a 4,797-vertex (123×39) fit, the
+  wall's drag at 41×41 (the same handle pattern) and a 161×81 fit;
 * for each optimize, the share of its time spent in the solver loop (``guided_projection``,
   from a profile of the command; the rest is reading, the reference, metrics, writing).
 """
@@ -27,7 +28,18 @@ DGPC = str(Path(sys.executable).parent / "dgpc")
 
 #: Iterations before this change (issue figures), for the comparison column.
 BEFORE = {"demo isometric (wall 21×13)": 829, "felt developable (41×25)": 205,
-          "bowling-pin fit (21×21)": 23, "bowling-pin fit (123×39, 4,797 vertices)": 94}
+          "bowling-pin fit (21×21)": 23, "bowling-pin fit (123×39, 4,797 vertices)": 94,
+          "wall isometric (41×41)": 200, "bowling-pin fit (161×81)": 200}
+
+
+def _wall_handles(path: Path, m: int, n: int) -> None:
+    """The demo wall's handle pattern (samples/generate.py) on an m×n net."""
+    sys.path.insert(0, str(ROOT / "samples"))
+    import generate
+
+    source, span, drag = generate.HANDLE_SETS["wall"]
+    profile = generate.read_profile_csv(ROOT / "samples" / "profiles" / source)
+    path.write_bytes(generate.handles_json(profile, m, n, span, drag))
 
 
 def _median_seconds(argv: list[str], runs: int = 5) -> float:
@@ -80,7 +92,14 @@ def main() -> int:
              "--span", "60", "--units", "m", "-o", str(d / "wall0")],
             [DGPC, "-q", "init", str(ROOT / "samples/meshes/felt.obj"), "--method", "geodesic",
              "--rows", "41", "--cols", "25", "-o", str(d / "felt0")],
+            [DGPC, "-q", "init", "--surface", "revolution", "--profile",
+             str(ROOT / "samples/profiles/wall.csv"), "--rows", "41", "--cols", "41",
+             "--span", "60", "--units", "m", "-o", str(d / "wall41")],
+            [DGPC, "-q", "init", "--surface", "revolution", "--profile", "bowling-pin",
+             "--rows", "161", "--cols", "81", "--span", "180", "--twist", "0.5",
+             "--reference-out", str(d / "pin-161.obj"), "-o", str(d / "p161")],
         ]
+        _wall_handles(d / "wall-41x41.json", 41, 41)
         for argv in prep:
             subprocess.run(argv, check=True, capture_output=True)
         cases = {
@@ -94,16 +113,23 @@ def main() -> int:
                  "--reference", str(ROOT / "samples/meshes/felt.obj")], "felt"),
             "bowling-pin fit (123×39, 4,797 vertices)": (
                 [DGPC, "-q", "optimize", str(d / "big0"), "--mode", "fit", "--reference",
-                 str(d / "pin-big.obj")], "big"),
+                 str(d / "pin-big.obj"), "--tol", "1e-9"], "big"),
+            "wall isometric (41×41)": (
+                [DGPC, "-q", "optimize", str(d / "wall41"), "--mode", "isometric", "--handles",
+                 str(d / "wall-41x41.json"), "--steps", "5"], "wall41i"),
+            "bowling-pin fit (161×81)": (
+                [DGPC, "-q", "optimize", str(d / "p161"), "--mode", "fit", "--reference",
+                 str(d / "pin-161.obj"), "--tol", "1e-9"], "p161f"),
         }
         print(f"{'command':44s} {'wall s':>8s} {'exit':>4s} {'iterations':>10s} "
-              f"{'before':>6s} {'solver loop':>11s}")
+              f"{'before':>6s} {'R':>9s} {'solver loop':>11s}")
         for name, (argv, stem) in cases.items():
             profile = d / f"{stem}.prof"
             wall, code = _run([*argv[1:], "-o", str(d / stem)], profile)
             iterations, share = _solver_share(d / stem, profile)
+            R = json.loads((d / f"{stem}.json").read_text())["metrics"]["R"]
             print(f"{name:44s} {wall:8.1f} {code:4d} {iterations:10d} {BEFORE[name]:6d} "
-                  f"{100 * share:10.0f} %")
+                  f"{R:9.1e} {100 * share:10.0f} %")
     return 0
 
 

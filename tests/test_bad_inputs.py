@@ -463,8 +463,8 @@ def test_optimize_and_from_quads_beyond_the_memory_limit_are_refused(sample, tmp
     big = copy_artifact(sample / "cat.json", tmp_path, "big",
                         lambda doc: doc["data"].update(shape=[900, 900]))
     result = run_bad([tmp_path], ["optimize", big, "--mode", "revolution", "-o",
-                                  tmp_path / "out"], 1, "big.json", "revolution", "900 × 900", "memory",
-                     "beyond the limit of 4 GiB")
+                                  tmp_path / "out"], 1, "big.json", "revolution", "900 × 900",
+                     "memory", "beyond the limit of 4 GiB")
     assert result.stdout == ""
     (tmp_path / "q.obj").write_bytes(b"v 0 0 0\n" * 2_200_000)
     run_bad([tmp_path], ["init", "--from-quads", tmp_path / "q.obj", "-o", tmp_path / "out"],

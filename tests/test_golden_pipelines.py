@@ -43,6 +43,7 @@ def test_pipeline_matches_golden(pipeline_run, name):
         diagonal = np.linalg.norm(np.ptp(w.reshape(-1, 3), axis=0))
         assert g.shape == w.shape and np.abs(g - w).max() <= coord_tol(name) * diagonal, stem
     assert got["dxf"] == want["dxf"]
+    assert got["json"] == want["json"]  # paths, keys, parameters, states (numbers above)
 
 
 def _planned(name, out):

@@ -100,9 +100,9 @@ def test_default_iteration_budget_is_per_step(half_sphere):
     dgpc("optimize", d / "hs0", "--mode", "isometric", "--handles", d / "h.json",
          "--steps", 3, "-o", d / "full")
     net = read_net(d / "full")
-    # a drag's intermediate steps stop at 10, its last at 200; four relaxation rounds of 30;
+    # a drag's intermediate steps stop at 10, its last at 200; three relaxation rounds of 30;
     # 200 for the final projection
-    assert net.parameters["max_iter"] == 10 + 10 + 200 + 4 * 30 + 200
+    assert net.parameters["max_iter"] == 10 + 10 + 200 + 3 * 30 + 200
     assert net.status["iterations"] <= 540 and net.status["state"] == "converged"
     target = json.loads((d / "h.json").read_text())["handles"][0]["target"]
     assert np.linalg.norm(net.f[0, 0] - target) <= 1e-6

@@ -166,8 +166,9 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
     result = NetArtifact(
         f=from_mm(outcome.f, net.units), units=net.units,
         parameters={"mode": mode, "weights": describe_weights(schedules),
-                    "soft": list(SOFT[mode]), "steps": steps, "max_iter": outcome.max_iter,
-                    "tol": tol, "max_strain": max_strain, "gpc_tol": gpc_tol, "solver": backend,
+                    "soft": [*SOFT[mode], *outcome.released], "steps": steps,
+                    "max_iter": outcome.max_iter, "tol": tol, "max_strain": max_strain,
+                    "gpc_tol": gpc_tol, "solver": backend,
                     **net.reference_parameters()},
         inputs=inputs, data=data)
     outcome.status, outcome.message = judge(outcome, net.f_mm, mode=mode,

@@ -32,6 +32,8 @@ class OptimizeOutcome:
     residuals: dict[str, float]
     R: float
     max_iter: int = 0
+    #: Hard terms the net was finally projected without (``RELEASE_R``); R leaves them out.
+    released: tuple[str, ...] = ()
 
     @property
     def iterations(self) -> int:
@@ -159,7 +161,8 @@ def optimize_net(
         result = guided_projection(x, problem.terms(targets), backend=backend,
                                    workspace=workspace, retract=layout.orient_edges,
                                    callback=step_progress,
-                                   **_step_limits(s, steps, start is not None, allowance, tol))
+                                   **_step_limits(s, steps, start is not None, allowance, tol,
+                                                  bool(pulling) or _faceted(problem)))
         log.info("step %d/%d: %s after %d iterations (%s)", s, steps, result.status,
                  result.iterations, result.message)
         workspace, x = result.workspace, result.x
@@ -199,20 +202,79 @@ def optimize_net(
                                        total + k, {**r, "phase": "projection"}))
         x = result.x
         results.append(result)
+        total += result.iterations
+    last = [r for r in results if r.status != "rejected"][-1]
+    released: tuple[str, ...] = ()
+    if not last.success and _faceted(problem) and last.R <= RELEASE_R and total < max_iter:
+        result = _release(problem, x, tol=tol, backend=backend,
+                          max_iter=(max_iter - total) if budget else TOL.max_iter,
+                          callback=lambda k, r: progress and progress(
+                              total + k, {**r, "phase": "projection"}))
+        if result is not None:
+            x = result.x
+            results.append(result)
+            released = ("approximation",)   # R: the hard terms the net was projected onto
     f_out = problem.vertices(x)
     norms = problem.residual_norms(f_out)
     last = [r for r in results if r.status != "rejected"][-1]
     return OptimizeOutcome(f=f_out, status=last.status, message=last.message, steps=results,
-                           residuals=norms, R=constraint_error(norms, weights, problem.soft),
-                           max_iter=max_iter)
+                           residuals=norms,
+                           R=constraint_error(norms, weights, (*problem.soft, *released)),
+                           max_iter=max_iter, released=released)
 
+
+
+#: A fit to a triangle mesh stalls where (6) and "on the mesh" cannot both hold closer: the
+#: footpoints of the approximation term jump between facets, and on the 4,797-vertex bowling
+#: pin (a 148,680-vertex mesh) the hard residual stops at 2e-8 (6e-7 at 161×81). Below
+#: RELEASE_R the net is projected onto the other hard terms alone; the result is kept when no
+#: vertex moved more than RELEASE_MOVE mean edge lengths — far below the chord error of the
+#: mesh's facets themselves — and the status message says so (4,797 vertices: 2 iterations to
+#: R 1.9e-11, vertices moved ≤ 2.3e-7 mean edges, 1.7e-9 of the mesh's diagonal).
+RELEASE_R, RELEASE_MOVE = 1e-6, 1e-4
+
+
+def _faceted(problem: Problem) -> bool:
+    """Whether the approximation term (a triangle mesh) is a hard term of ``problem``."""
+    return any(t.name == "approximation" and t.hard and t.weight.end > 0
+               for t in problem.terms())
+
+
+def _release(problem: Problem, x: np.ndarray, *, tol: float, backend: str, max_iter: int,
+             callback=None) -> SolverResult | None:
+    """The projection of a stalled fit onto its hard terms without the approximation term
+    (see ``RELEASE_R``); None when it does not reach ``tol`` or moves a vertex further than
+    ``RELEASE_MOVE`` mean edge lengths."""
+    settled = {name: Schedule.constant(w.end) for name, w in problem.weights.items()}
+    released = Problem(problem.layout, problem.scale,
+                       {**settled, "approximation": Schedule.constant(0.0)},
+                       problem.f0, problem.handle_ids, problem.handle_targets, None,
+                       problem.soft, problem.boundary_ids, problem.f_start)
+    log.info("the fit stalled at the facets of the reference: projecting onto the other hard "
+             "constraints")
+    result = guided_projection(x, released.terms(), max_iter=max_iter, tol=tol,
+                               backend=backend, retract=problem.layout.orient_edges,
+                               callback=callback)
+    before, after = problem.vertices(x), problem.vertices(result.x)
+    moved = float(np.linalg.norm(after - before, axis=-1).max()) / problem.scale
+    if not result.success or moved > RELEASE_MOVE:
+        log.info("projection not kept (%s; largest move %.3g mean edges)", result.status, moved)
+        return None
+    result.message += (f"; the approximation term released at the mesh's facets (vertices "
+                       f"moved at most {moved:.2g} mean edges)")
+    return result
 
 
 #: Relaxation of a drag's regularizer: its weight falls to these fractions of the mode's, one
 #: round of at most RELAX_ITER iterations each, while the largest strain against the input falls
 #: by at least RELAX_GAIN per round and the pleat measure stays below half its tolerance (the
-#: last round, without it, reaches an exact isometric deformation where there is one).
-RELAX_FRACTIONS, RELAX_ITER, RELAX_GAIN = (1e-1, 1e-2, 1e-3, 0.0), 30, 0.9
+#: last round, without it, reaches an exact isometric deformation where there is one). Measured
+#: on the Gehry facades, the demo wall and five gallery shapes (21×13): starting at 1e-2 rather
+#: than 1e-1 of the mode's weight ends at the same nets (largest strain within 4e-5 of 3e-4)
+#: with 10–60 iterations fewer; a round needs its 30 iterations (the solver's non-monotone
+#: steps near the solution: rounds of 20 left the Minding-bent half sphere at strain 1.7e-5
+#: instead of 4e-8).
+RELAX_FRACTIONS, RELAX_ITER, RELAX_GAIN = (1e-2, 1e-3, 0.0), 30, 0.9
 #: ... and while the gpc angle defect stays within this fraction of --gpc-tol: the projection
 #: onto the hard terms that follows moves it (a cylinder twisted at 21×13: 9.8e-5 → 1.17e-4).
 RELAX_GPC_MARGIN = 0.5
@@ -230,9 +292,17 @@ def _default_budget(steps: int, drag: bool, relax: bool, pulling: bool) -> int:
             + (TOL.max_iter if pulling else 0))
 
 
-def _step_limits(s: int, steps: int, drag: bool, max_iter: int, tol: float) -> dict:
-    """Stopping rules of handle step ``s`` of ``steps`` (see ``STEP_MAX_ITER``)."""
+def _step_limits(s: int, steps: int, drag: bool, max_iter: int, tol: float,
+                 pulling: bool = False) -> dict:
+    """Stopping rules of handle step ``s`` of ``steps`` (see ``STEP_MAX_ITER``). A run
+    without handles that a projection follows when it stalls (its soft terms or regularizers
+    pull, or it fits a triangle mesh, see ``RELEASE_R``) stops once its objective falls by less
+    than 1 − STEP_RATIO over LAST_WINDOW iterations: what it still gains there the projection
+    would undo."""
     if not drag:
+        if pulling:
+            return {"max_iter": max_iter, "tol": tol, "stagnation_window": LAST_WINDOW,
+                    "stagnation_ratio": STEP_RATIO}
         return {"max_iter": max_iter, "tol": tol}
     if s < steps:
         return {"max_iter": min(max_iter, STEP_MAX_ITER), "tol": max(tol, STEP_TOL),
@@ -291,8 +361,9 @@ def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targ
             result.status, result.x = "rejected", x      # its work counts, its net does not
             accepted.append(result)
             # no gain at this weight: one last try without it (an exact isometric deformation
-            # is reached there when one exists; a pleat is refused)
-            fractions = [0.0] if fraction > 0 else []
+            # is reached there when one exists; a pleat is refused) — unless the gpc defect
+            # ended above its limit: less smoothness does not bring it back
+            fractions = [0.0] if fraction > 0 and defect <= defect_limit else []
             continue
         best, x, current, level = worst, result.x, defect, weight
         accepted.append(result)

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 from collections import Counter
@@ -243,7 +244,60 @@ def collect(name: str, d: Path) -> dict:
         "counts": {k: int(get(*v)) for k, v in COUNTS[name].items()},
         "nets": {stem: read_net(d / stem).f.tolist() for stem in NETS[name]},
         "dxf": dxf,
+        "json": json_skeletons(d),
     }
+
+
+_NUMERAL = re.compile(r"\d+(\.\d+)?([eE][-+]?\d+)?")
+_SHA256 = re.compile(r"^[0-9a-f]{64}$")
+
+
+def _skeleton(x):
+    """``x`` with every number masked (they differ between CPUs in their last digits, and are
+    compared above with their tolerances), sha256 values and numerals in strings masked, a path
+    out of the pipeline's folder reduced to its file name, and the items of a list of objects
+    deduplicated (their number follows the numbers)."""
+    if isinstance(x, dict):
+        return {k: _skeleton(v) for k, v in sorted(x.items())}
+    if isinstance(x, list):
+        if all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in x):
+            return "<numbers>"
+        items = [_skeleton(v) for v in x]
+        if all(isinstance(v, dict) for v in x):
+            unique = {json.dumps(v, sort_keys=True): v for v in items}
+            return [unique[k] for k in sorted(unique)]
+        return items
+    if isinstance(x, bool) or x is None:
+        return x
+    if isinstance(x, (int, float)):
+        return "<number>"
+    if _SHA256.match(x) or x == "<sha256>":
+        return "<sha256>"
+    if x.startswith(("../", "/")):   # a file outside the pipeline's folder (samples/, the
+        x = "<outside>/" + x.rsplit("/", 1)[-1]   # checkout): where it lies is the machine's
+    return _NUMERAL.sub("#", x)
+
+
+def json_skeleton(path: Path) -> dict:
+    """What the golden records of an artifact JSON besides its numbers: its kind, version,
+    inputs (paths relative to the artifact's folder), parameters, data and the names of its
+    metrics, and its state; a path stored as typed, or a key lost, changes it."""
+    doc = json.loads(path.read_text())
+    status = doc.get("status", {})
+    return _skeleton({**{k: doc[k] for k in ("kind", "schema_version", "created_by", "inputs",
+                                             "parameters", "data")},
+                      "metrics": sorted(doc.get("metrics", {})),
+                      "status": {"state": status.get("state")}})
+
+
+def json_skeletons(d: Path) -> dict:
+    """:func:`json_skeleton` of every artifact JSON of a pipeline's folder ``d``."""
+    out = {}
+    for path in sorted(d.glob("*.json")):
+        doc = json.loads(path.read_text())
+        if isinstance(doc, dict) and "schema_version" in doc and "kind" in doc:
+            out[path.name] = json_skeleton(path)
+    return out
 
 
 def dumps(doc: dict) -> str:
