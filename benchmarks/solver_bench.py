@@ -27,11 +27,12 @@ from dgpc_cli.core.layout import NetLayout
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.core.solver.linear import available_backends
 from dgpc_cli.stages.init import REFERENCE_MARGIN
-from dgpc_cli.stages.modes import mode_weights
+from dgpc_cli.stages.modes import RELAX, SOFT, mode_weights
 from dgpc_cli.stages.optimize import optimize_net
 from dgpc_cli.surfaces.minding import minding_bend
 from dgpc_cli.surfaces.profiles import builtin_profile
 from dgpc_cli.surfaces.revolution import extended, revolution_mesh, revolution_net
+from dgpc_cli.tolerances import tol as TOL
 
 REFERENCE_ITERATIONS = 3
 
@@ -41,7 +42,9 @@ def isometric_problem():
     g = minding_bend(f, 0.85)
     layout = NetLayout(21, 21)
     ids = np.array([layout.vid[0, 0], layout.vid[0, -1], layout.vid[-1, 10]])
-    kwargs = dict(handle_ids=ids, handle_targets=g.reshape(-1, 3)[ids], steps=5)
+    kwargs = dict(handle_ids=ids, handle_targets=g.reshape(-1, 3)[ids], steps=5,
+                  soft=SOFT["isometric"], relax=RELAX["isometric"], gpc_tol=TOL.gpc_tol,
+                  max_strain=TOL.max_strain)            # as `dgpc optimize --mode isometric`
     return "21×21 isometric (Fig. 1, 10)", f, mode_weights("isometric"), kwargs
 
 
@@ -95,7 +98,7 @@ def run(problem):
     t0 = time.perf_counter()
     ours = optimize_net(f, weights, max_iter=200, tol=1e-10, **kwargs)
     wall = time.perf_counter() - t0
-    ref_kwargs = {**kwargs, "steps": 1}
+    ref_kwargs = {**kwargs, "steps": 1, "relax": None}
     ref = optimize_net(f, weights, max_iter=REFERENCE_ITERATIONS, tol=0.0, backend="spsolve",
                        **ref_kwargs)
     return {
