@@ -554,3 +554,41 @@ def test_a_non_manifold_mesh(tmp_path):
     run_bad([tmp_path], ["init", tmp_path / "fin.obj", "--method", "geodesic",
                          "-o", tmp_path / "out"], 1, "fin.obj", "not a manifold mesh",
             "borders 3 faces")
+
+
+# -- found by trying the hardening as a user would ----------------------------------------------
+
+def test_a_shape_of_floats_or_an_oversized_net_obj(sample, tmp_path):
+    """data.shape [9.0, 7] (JSON Schema takes it for integers) and a net OBJ of 300,000
+    vertices for a 9 × 7 net (sha256 updated): one line each, refused before the OBJ is
+    parsed."""
+    floats = copy_artifact(sample / "cat.json", tmp_path, "floats",
+                           lambda doc: doc["data"].update(shape=[9.0, 7]))
+    for args in (["inspect", floats], ["optimize", floats, "--mode", "revolution", "-o",
+                                       tmp_path / "out"]):
+        run_bad([tmp_path], args, 1, "floats.json", "data.shape", "whole numbers")
+    data = b"v 1 2 3\n" * 300_000
+    big = copy_artifact(sample / "cat.json", tmp_path, "big", lambda doc: doc["data"].update(
+        obj_sha256=hashlib.sha256(data).hexdigest()))
+    (tmp_path / "big.obj").write_bytes(data)
+    run_bad([tmp_path], ["inspect", big], 1, "big.obj", "300000 vertices", "9 x 7 = 63")
+
+
+def test_an_unreadable_journal_says_what_to_do(sample, tmp_path):
+    art = copy_artifact(sample / "cat.json", tmp_path, "net")
+    (tmp_path / ".net.json.journal").write_text("garbage")
+    run_bad([tmp_path], ["inspect", art], 1, ".net.json.journal", "remove it")
+
+
+@pytest.mark.skipif(not Path("/dev/full").exists(), reason="needs /dev/full")
+def test_stdout_on_a_full_disk_is_one_line(sample):
+    import subprocess
+    import sys
+
+    with open("/dev/full", "w") as full:
+        result = subprocess.run([str(Path(sys.executable).parent / "dgpc"), "inspect",
+                                 str(sample / "cat")], stdout=full, stderr=subprocess.PIPE,
+                                text=True)
+    assert result.returncode == 1
+    assert result.stderr.strip().splitlines() == [
+        "Error: cannot write the output: No space left on device"]

@@ -140,3 +140,29 @@ def test_a_second_writer_of_one_stem_is_refused_and_changes_nothing(sets, tmp_pa
     assert holder.returncode == 0
     assert _visible(_files(tmp_path), "out") == old
     assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".")] == []
+
+
+def test_a_reader_between_a_commit_and_its_obj_reads_the_new_set(sets, tmp_path, monkeypatch):
+    """A write that commits after a reader read the JSON and before it read the OBJ: the
+    reader does not report a false mismatch, it reads the artifact again (the new set)."""
+    import dgpc_cli.io.net as net_io
+
+    d, _, _, _, new, _ = sets
+    old_net = d / "net.json"                         # the "old" artifact: the input net
+    for name in ("out.json", "out.obj"):
+        (tmp_path / name).write_bytes(old_net.with_suffix(name[3:]).read_bytes())
+    doc = (tmp_path / "out.json").read_text().replace('"net.obj"', '"out.obj"')
+    (tmp_path / "out.json").write_text(doc)
+    real, calls = net_io.read_listed, []
+
+    def read_listed(path, *args):
+        if not calls:                                # the concurrent commit lands here
+            for name, data in new.items():
+                (tmp_path / name).write_bytes(data)
+        calls.append(path)
+        return real(path, *args)
+
+    monkeypatch.setattr(net_io, "read_listed", read_listed)
+    net = net_io.read_net(tmp_path / "out")
+    assert len(calls) == 2                           # read twice: old JSON, then new
+    assert net.status["state"] == "converged" and net.parameters["tol"] == 1e-7

@@ -95,6 +95,10 @@ class DgpcGroup(click.Group):
             ctx.exit(err.exit_code)
         except (click.exceptions.Exit, click.ClickException, click.Abort):
             raise
+        except OSError as err:  # stdout on a full disk or a closed pipe, say
+            where = f"{err.filename}: " if err.filename else "cannot write the output: "
+            click.echo(f"Error: {where}{err.strerror or err}", err=True)
+            ctx.exit(1)
         except Exception as err:  # noqa: BLE001 - the last line of defence
             if ctx.obj and ctx.obj.get("verbosity", 0) > 0:
                 raise

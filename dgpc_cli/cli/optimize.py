@@ -25,7 +25,7 @@ from dgpc_cli.io.artifact import (
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.handles import read_handles
 from dgpc_cli.io.mesh import load_mesh
-from dgpc_cli.io.net import NetArtifact, net_files, read_net
+from dgpc_cli.io.net import NetArtifact, net_files, net_shape, read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.stages.inspect import summarize
@@ -118,7 +118,7 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
         raise click.UsageError("give --reference or --no-reference, not both")
     json_path, _ = artifact_paths(stem)
     check_writable(output, force)
-    m, n = load_envelope(json_path, "net")["data"]["shape"]
+    m, n = net_shape(load_envelope(json_path, "net")["data"], json_path)
     check_net_size(m, n, str(json_path), "optimize a coarser net (init --rows/--cols)",
                    per_vertex=OPTIMIZE_BYTES_PER_VERTEX[mode],
                    what=f"optimizing ({mode}) a net of")

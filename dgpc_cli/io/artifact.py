@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import os
+import time
 from pathlib import Path, PurePosixPath, PureWindowsPath
 from typing import Any
 
@@ -181,9 +183,35 @@ def read_listed(path: Path, sha256: str, json_path: Path, field: str) -> bytes:
     except OSError as e:
         raise DgpcError(f"cannot read: {e.strerror or e}", source=path) from None
     if sha256_bytes(data) != sha256:
-        raise DgpcError(f"does not match {Path(json_path).name} (edited separately?): its "
-                        f"sha256 differs from {field}", source=path)
+        raise ListedFileChanged(f"does not match {Path(json_path).name} (edited separately?): "
+                                f"its sha256 differs from {field}", source=path)
     return data
+
+
+class ListedFileChanged(DgpcError):
+    """A listed file's sha256 differs from the one its JSON records: edited separately, or
+    replaced by a write that committed between the reading of the JSON and of the file."""
+
+
+#: How often an artifact is read again when a listed file did not match its JSON.
+READ_ATTEMPTS = 3
+
+
+def reread(read):
+    """Decorate an artifact reader: a listed file that does not match the JSON read just before
+    may belong to a write that committed in between, so the whole artifact is read again (at
+    most :data:`READ_ATTEMPTS` times; the reading of the JSON waits for a live writer's
+    renames): a reader gets the old set or the new one, never a false mismatch."""
+    @functools.wraps(read)
+    def wrapper(*args, **kwargs):
+        for attempt in range(1, READ_ATTEMPTS + 1):
+            try:
+                return read(*args, **kwargs)
+            except ListedFileChanged:
+                if attempt == READ_ATTEMPTS:
+                    raise
+                time.sleep(0.05 * attempt)
+    return wrapper
 
 
 def listed_files(json_path: str | Path) -> list[Path]:

@@ -41,6 +41,7 @@ from .artifact import (
     load_envelope,
     read_listed,
     relative_input,
+    reread,
 )
 from .coordinates import bad_rows, coordinate_problem
 from .obj import check_obj_objects, parse_obj
@@ -169,6 +170,7 @@ def _obj_vertices(part: dict) -> int:
     return 2 * len(part["geodesics"][0])
 
 
+@reread
 def read_flat(stem: str | Path) -> FlatArtifact:
     """Read and validate a flat artifact: envelope, schema, the OBJ's hash, and the classes'
     consistency with the parts (every part in exactly one class, quantities match)."""

@@ -97,8 +97,9 @@ def _replay(journal: Path) -> None:
     try:
         doc = json.loads(journal.read_bytes())
     except (OSError, ValueError) as e:
-        raise DgpcError(f"cannot read the journal of an interrupted write: {e}",
-                        source=journal) from None
+        raise DgpcError(f"cannot read the journal of an interrupted write ({e}); remove it to "
+                        "keep the files as they are, or write the artifact again after removing "
+                        "it", source=journal) from None
     directory = journal.parent
     renames = doc.get("replace", []) if isinstance(doc, dict) else []
     for pair in renames if isinstance(renames, list) else []:

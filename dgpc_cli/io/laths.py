@@ -18,6 +18,7 @@ from .artifact import (
     load_envelope,
     make_envelope,
     read_listed,
+    reread,
     sha256_bytes,
     validate_envelope,
 )
@@ -145,6 +146,7 @@ class LathsArtifact:
         return [self.polylines[r["lath_id"]] for r in self.rows if r["family"] == name]
 
 
+@reread
 def read_laths(stem: str | Path) -> LathsArtifact:
     """Read and validate a laths artifact: envelope, schema, the OBJ's and the cut list's
     hashes, and that both list the same laths in the counts the JSON records."""

@@ -37,6 +37,7 @@ from .artifact import (
     load_envelope,
     read_listed,
     relative_input,
+    reread,
 )
 from .coordinates import bad_rows, coordinate_problem
 from .obj import check_obj_objects, net_quads, parse_obj
@@ -283,6 +284,7 @@ def _check_objs(data: dict, json_path: Path) -> None:
                             f"on net{k + 1}", source=path)
 
 
+@reread
 def read_mold(stem: str | Path) -> MoldArtifact:
     """Read and validate a mold artifact: envelope and schema, consistency, the OBJ and the
     extra files present and unchanged (sha256)."""

@@ -13,6 +13,7 @@ from .artifact import (
     artifact_paths,
     load_envelope,
     read_listed,
+    reread,
 )
 from .atomic import write_files
 from .coordinates import bad_rows, coordinate_problem
@@ -104,12 +105,24 @@ def write_net(stem: str | Path, net: NetArtifact, *, force: bool = False) -> tup
     return json_path, obj_path
 
 
+def net_shape(data: dict, json_path: str | Path) -> tuple[int, int]:
+    """``(m, n)`` of a net's ``data.shape``: whole numbers written as such (JSON Schema takes
+    ``9.0`` for an integer; numpy does not); DgpcError naming the JSON otherwise."""
+    shape = data.get("shape")
+    if not (isinstance(shape, list) and len(shape) == 2
+            and all(isinstance(k, int) and not isinstance(k, bool) for k in shape)):
+        raise DgpcError(f"data.shape: {shape!r} is not two whole numbers [m, n]",
+                        source=json_path)
+    return shape[0], shape[1]
+
+
+@reread
 def read_net(stem: str | Path) -> NetArtifact:
     """Read and validate a net artifact (envelope, OBJ hash, vertex count, finiteness)."""
     json_path, obj_path = artifact_paths(stem)
     doc = load_envelope(json_path, KIND)
     data = doc["data"]
-    m, n = data["shape"]
+    m, n = net_shape(data, json_path)
     obj_bytes = read_listed(obj_path, data["obj_sha256"], json_path, "data.obj_sha256")
     f = parse_net_obj(obj_bytes, m, n, obj_path)
     return NetArtifact(f=f, units=data["units"], parameters=doc["parameters"],

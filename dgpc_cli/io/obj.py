@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -49,6 +50,14 @@ def _vertex_rows(data: bytes, source) -> list[tuple[float, float, float]]:
     return rows
 
 
+def count_lines(data: bytes, keyword: bytes) -> int:
+    """How many lines of OBJ bytes start with ``keyword`` (after blanks), as a parser that
+    splits lines at ``\n``, ``\r`` or both would see them; counted before anything is parsed
+    (the size guards)."""
+    pattern = re.compile(rb"(?:^|[\r\n])[ \t]*" + re.escape(keyword) + rb"[ \t]")
+    return sum(1 for _ in pattern.finditer(data))
+
+
 def parse_net_obj(data: bytes, m: int, n: int, source: str | Path) -> np.ndarray:
     """Net ``(m, n, 3)`` from OBJ bytes whose ``v`` lines number exactly ``m*n`` (row-major).
 
@@ -56,6 +65,10 @@ def parse_net_obj(data: bytes, m: int, n: int, source: str | Path) -> np.ndarray
     Errors are DgpcErrors naming ``source``: no vertices, a count other than m×n, an
     unparsable number (with its line), a non-finite coordinate (with its vertex and (u, v)).
     """
+    counted = count_lines(data, b"v")
+    if counted > m * n:                 # refused before a long file is parsed
+        raise DgpcError(f"{counted} vertices, but the net is {m} x {n} = {m * n}",
+                        source=source)
     rows = _vertex_rows(data, source)
     if not rows:
         raise DgpcError("no vertices ('v' lines) in the OBJ", source=source)

@@ -32,6 +32,7 @@ from .artifact import (
     load_envelope,
     read_listed,
     relative_input,
+    reread,
 )
 from .obj import check_obj_objects, parse_obj
 
@@ -110,6 +111,7 @@ def _check_obj(data: dict, json_path: Path) -> None:
                             f"data.placements puts {len(parts)} parts on it", source=path)
 
 
+@reread
 def read_sheets(stem: str | Path) -> SheetsArtifact:
     """Read and validate a sheets artifact: envelope and schema, the sheet indices and counts,
     the OBJ and every listed file present and unchanged (sha256)."""

@@ -20,6 +20,7 @@ from .artifact import (
     artifact_paths,
     load_envelope,
     read_listed,
+    reread,
 )
 from .obj import _vertex_rows, check_obj_objects, parse_obj
 from .units import DEFAULT_UNITS, stored
@@ -119,6 +120,7 @@ def strips_files(stem: str | Path, art: StripsArtifact) -> dict[Path, bytes]:
                           parameters=art.parameters, metrics=art.metrics, status=art.status)
 
 
+@reread
 def read_strips(stem: str | Path) -> StripsArtifact:
     """Read and validate a strips artifact (envelope, schema, OBJ hash and vertex counts)."""
     json_path, obj_path = artifact_paths(stem)

@@ -11,6 +11,7 @@ import numpy as np
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.coordinates import bad_rows, coordinate_problem
 from dgpc_cli.io.net import NetArtifact
+from dgpc_cli.io.obj import count_lines
 from dgpc_cli.metrics.degenerate import GPC_LIMIT, degeneracies
 from dgpc_cli.metrics.residuals import gpc_angle_defect_max
 from dgpc_cli.stages.net_size import check_net_size
@@ -31,7 +32,8 @@ def read_quad_obj(path: Path) -> tuple[np.ndarray, np.ndarray]:
         raise DgpcError(f"cannot read: {e.strerror or e}", source=path) from None
     if b"\0" in text:
         raise DgpcError("not an OBJ file: binary data", source=path)
-    vertices = text.count(b"\nv ") + text.count(b"\nv\t") + text.startswith((b"v ", b"v\t"))
+    # a quad net has about as many faces as vertices: count both before parsing
+    vertices = max(count_lines(text, b"v"), count_lines(text, b"f"))
     check_net_size(vertices, 1, str(path), "import a coarser net", what="a net of")
     verts, quads = [], []
     for lineno, raw in enumerate(text.decode("utf-8", errors="replace").splitlines(), 1):
