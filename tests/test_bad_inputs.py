@@ -592,3 +592,9 @@ def test_stdout_on_a_full_disk_is_one_line(sample):
     assert result.returncode == 1
     assert result.stderr.strip().splitlines() == [
         "Error: cannot write the output: No space left on device"]
+
+
+def test_a_scale_that_shrinks_the_parts_below_a_kerf(sample, tmp_path):
+    run_bad([sample, tmp_path], ["nest", sample / "flat", "--sheet", "2500x1250", "--scale",
+                                 1e-15, "-o", tmp_path / "s"], 1, "--scale",
+            "below 0.1 mm")

@@ -39,6 +39,11 @@ ENGINES = ("fill", "spyrrow")
 CHECK_TOL_MM = 1e-7
 
 
+#: The shortest part (its longer side, in mm) nest cuts: below a cutter's kerf a part is a slip
+#: of a scale or unit, not a part.
+MIN_PART_LENGTH = 0.1
+
+
 def parse_rotations(text: str) -> list[float]:
     """``"0,180"`` → ``[0.0, 180.0]``: distinct angles in degrees (ValueError otherwise)."""
     items = [t.strip() for t in str(text).split(",")]
@@ -144,6 +149,12 @@ def nest_parts(flat_parts: list[dict], sheet: Sheet, rotations: list[float], *,
     if not reach <= limit:
         raise DgpcError(f"{scale:g}: the parts scaled by it reach {reach:g} mm, beyond "
                         f"{limit:g} mm, the largest length dgpc accepts", source="--scale")
+    smallest = k * min((float(np.max(np.ptp(np.asarray(rec["outline"], float), axis=0)))
+                        for rec in flat_parts), default=np.inf)
+    if not smallest >= MIN_PART_LENGTH:
+        raise DgpcError(f"{scale:g}: the smallest part scaled by it is {smallest:.3g} mm long, "
+                        f"below {MIN_PART_LENGTH:g} mm (a cutter's kerf); check --scale and "
+                        "the flat artifact's unit", source="--scale")
     parts = prepare_parts(flat_parts, k, group_tolerance(sheet.spacing))
     check_fit(parts, sheet, rotations)
     if engine == "fill":
