@@ -90,7 +90,7 @@ def write_files(files: dict[Path, bytes], *, force: bool = False,
         finish_interrupted(manifest_of(targets))
         remove_leftovers(targets)
     _check_targets(targets, force)
-    stale = _stale_files([p for p, _ in items], replaces) if force else []
+    stale = _stale_files(targets, replaces) if force else []
     umask = os.umask(0)
     os.umask(umask)
     mode = 0o666 & ~umask

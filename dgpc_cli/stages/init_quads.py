@@ -14,7 +14,7 @@ from dgpc_cli.io.net import NetArtifact
 from dgpc_cli.io.obj import count_lines
 from dgpc_cli.metrics.degenerate import GPC_LIMIT, degeneracies
 from dgpc_cli.metrics.residuals import gpc_angle_defect_max
-from dgpc_cli.stages.net_size import check_net_size
+from dgpc_cli.stages.net_size import check_vertex_count
 
 log = logging.getLogger(__name__)
 
@@ -34,7 +34,7 @@ def read_quad_obj(path: Path) -> tuple[np.ndarray, np.ndarray]:
         raise DgpcError("not an OBJ file: binary data", source=path)
     # a quad net has about as many faces as vertices: count both before parsing
     vertices = max(count_lines(text, b"v"), count_lines(text, b"f"))
-    check_net_size(vertices, 1, str(path), "import a coarser net", what="a net of")
+    check_vertex_count(vertices, str(path), "import a coarser net")
     verts, quads = [], []
     for lineno, raw in enumerate(text.decode("utf-8", errors="replace").splitlines(), 1):
         parts = raw.split()

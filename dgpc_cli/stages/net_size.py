@@ -56,10 +56,20 @@ def check_net_size(m: float, n: float, source: str, hint: str, *,
     net would need more than :data:`MAX_NET_BYTES` at ``per_vertex`` bytes a vertex
     (``optimize``: :data:`OPTIMIZE_BYTES_PER_VERTEX` of its mode); ``hint`` says what to
     change."""
-    need = net_bytes(m, n, per_vertex)
+    _check(net_bytes(m, n, per_vertex), f"{what} {_count(m)} × {_count(n)} vertices", source,
+           hint, per_vertex)
+
+
+def check_vertex_count(count: float, source: str, hint: str) -> None:
+    """:func:`check_net_size` for a net known only by its number of vertices (an OBJ's lines,
+    counted before it is parsed)."""
+    _check(float(count) * BYTES_PER_VERTEX, f"a net of {_count(count)} vertices", source, hint,
+           BYTES_PER_VERTEX)
+
+
+def _check(need: float, subject: str, source: str, hint: str, per_vertex: int) -> None:
     if need <= MAX_NET_BYTES and math.isfinite(need):
         return
-    size = f"{_count(m)} × {_count(n)} vertices" if n != 1 else f"{_count(m)} vertices"
-    raise NetTooLarge(f"{what} {size} would need {_size(need)} ({per_vertex} bytes per "
-                      f"vertex), beyond the limit of {MAX_NET_BYTES / 2**30:g} GiB "
+    raise NetTooLarge(f"{subject} would need {_size(need)} ({per_vertex} bytes per vertex), "
+                      f"beyond the limit of {MAX_NET_BYTES / 2**30:g} GiB "
                       f"({MAX_NET_BYTES // per_vertex} vertices); {hint}", source=source)

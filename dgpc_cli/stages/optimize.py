@@ -143,6 +143,7 @@ def optimize_net(
     total = 0
     pulling = [t.name for t in problem.terms()
                if (not t.hard or t.regularizer) and t.weight.end > 0]
+    faceted = _faceted(problem)
     phases = steps + bool(pulling)
     budget = max_iter is not None
     if not budget:
@@ -162,7 +163,7 @@ def optimize_net(
                                    workspace=workspace, retract=layout.orient_edges,
                                    callback=step_progress,
                                    **_step_limits(s, steps, start is not None, allowance, tol,
-                                                  bool(pulling) or _faceted(problem)))
+                                                  bool(pulling) or faceted))
         log.info("step %d/%d: %s after %d iterations (%s)", s, steps, result.status,
                  result.iterations, result.message)
         workspace, x = result.workspace, result.x
@@ -205,7 +206,7 @@ def optimize_net(
         total += result.iterations
     last = [r for r in results if r.status != "rejected"][-1]
     released: tuple[str, ...] = ()
-    if not last.success and _faceted(problem) and last.R <= RELEASE_R and total < max_iter:
+    if not last.success and faceted and last.R <= RELEASE_R and total < max_iter:
         result = _release(problem, x, tol=tol, backend=backend,
                           max_iter=(max_iter - total) if budget else TOL.max_iter,
                           callback=lambda k, r: progress and progress(
@@ -223,7 +224,6 @@ def optimize_net(
                            max_iter=max_iter, released=released)
 
 
-
 #: A fit to a triangle mesh stalls where (6) and "on the mesh" cannot both hold closer: the
 #: footpoints of the approximation term jump between facets, and on the 4,797-vertex bowling
 #: pin (a 148,680-vertex mesh) the hard residual stops at 2e-8 (6e-7 at 161×81). Below
@@ -236,8 +236,8 @@ RELEASE_R, RELEASE_MOVE = 1e-6, 1e-4
 
 def _faceted(problem: Problem) -> bool:
     """Whether the approximation term (a triangle mesh) is a hard term of ``problem``."""
-    return any(t.name == "approximation" and t.hard and t.weight.end > 0
-               for t in problem.terms())
+    return ("approximation" in problem.active() and "approximation" not in problem.soft
+            and problem.weights["approximation"].end > 0)
 
 
 def _release(problem: Problem, x: np.ndarray, *, tol: float, backend: str, max_iter: int,
@@ -245,11 +245,9 @@ def _release(problem: Problem, x: np.ndarray, *, tol: float, backend: str, max_i
     """The projection of a stalled fit onto its hard terms without the approximation term
     (see ``RELEASE_R``); None when it does not reach ``tol`` or moves a vertex further than
     ``RELEASE_MOVE`` mean edge lengths."""
-    settled = {name: Schedule.constant(w.end) for name, w in problem.weights.items()}
-    released = Problem(problem.layout, problem.scale,
-                       {**settled, "approximation": Schedule.constant(0.0)},
-                       problem.f0, problem.handle_ids, problem.handle_targets, None,
-                       problem.soft, problem.boundary_ids, problem.f_start)
+    # every schedule at its end (a schedule such as fairness 0.01->0 must not run again)
+    released = _reweighted(problem, {**{name: w.end for name, w in problem.weights.items()},
+                                     "approximation": 0.0})
     log.info("the fit stalled at the facets of the reference: projecting onto the other hard "
              "constraints")
     result = guided_projection(x, released.terms(), max_iter=max_iter, tol=tol,
@@ -293,14 +291,14 @@ def _default_budget(steps: int, drag: bool, relax: bool, pulling: bool) -> int:
 
 
 def _step_limits(s: int, steps: int, drag: bool, max_iter: int, tol: float,
-                 pulling: bool = False) -> dict:
+                 projected: bool = False) -> dict:
     """Stopping rules of handle step ``s`` of ``steps`` (see ``STEP_MAX_ITER``). A run
     without handles that a projection follows when it stalls (its soft terms or regularizers
     pull, or it fits a triangle mesh, see ``RELEASE_R``) stops once its objective falls by less
     than 1 − STEP_RATIO over LAST_WINDOW iterations: what it still gains there the projection
     would undo."""
     if not drag:
-        if pulling:
+        if projected:
             return {"max_iter": max_iter, "tol": tol, "stagnation_window": LAST_WINDOW,
                     "stagnation_ratio": STEP_RATIO}
         return {"max_iter": max_iter, "tol": tol}
