@@ -8,7 +8,7 @@ import pytest
 import trimesh
 
 from dgpc_cli.errors import DgpcError
-from dgpc_cli.io.mesh import consistent_winding, load_mesh, write_mesh_obj
+from dgpc_cli.io.mesh import _plain_obj, consistent_winding, load_mesh, write_mesh_obj
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
 
@@ -127,3 +127,25 @@ def test_consistent_winding_restores_random_flips():
     fixed = consistent_winding(np.concatenate([faces, other]))
     assert np.array_equal(fixed[: len(faces)], mesh.faces)
     assert np.array_equal(fixed[len(faces):], other)
+
+
+@pytest.mark.parametrize("line_end", [b"\n", b"\r\n"])
+def test_plain_obj_reads_as_trimesh_does(tmp_path, line_end):
+    """The fast reader of plain triangle OBJ files gives trimesh's vertices and faces (line
+    ends, comments, tabs, groups); anything else (polygons, slashes, colours, negative indices)
+    goes to trimesh."""
+    vertices, faces = plane_grid(3)
+    vertices = vertices + [0.125, -2.5e-3, 1e-9]
+    lines = [b"# a comment", b"o grid", *(b"v %r\t%r %r" % tuple(p) for p in vertices.tolist()),
+             b"g faces", b"s off", *(b"f %d %d %d" % tuple(t) for t in (faces + 1).tolist())]
+    path = tmp_path / "grid.obj"
+    path.write_bytes(line_end.join(lines) + line_end)
+    mesh = load_mesh(path)
+    ref = trimesh.load(path, process=False)
+    assert np.array_equal(mesh.vertices, ref.vertices)
+    assert np.array_equal(np.sort(mesh.faces, axis=1), np.sort(ref.faces, axis=1))
+    assert _plain_obj(path.read_bytes()) is not None
+    head = [b"v 0 0 0", b"v 1 0 0", b"v 1 1 0", b"v 0 1 0"]
+    for other in ([*head, b"f 1 2 3 4"], [*head, b"f 1/1 2/2 3/3"], [*head, b"f -4 -3 -2"],
+                  [*head[:3], b"v 0 1 0 0.5 0.5 0.5", b"f 1 2 3"], [*head, b"f 1 2 x"]):
+        assert _plain_obj(b"\n".join(other) + b"\n") is None     # trimesh reads these

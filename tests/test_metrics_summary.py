@@ -98,3 +98,18 @@ def test_straight_rows_depart_by_their_distance_from_a_line():
     f[2, 2, 2] = 0.3                        # row 2 is no longer straight: a circle fits it
     d = circle_departure(f)
     assert np.allclose(d[[0, 1, 3]], 0.0, atol=1e-12) and 0 < d[2] < 0.3
+
+
+def test_coverage_with_the_reference_tree_lent():
+    """A ReferenceSurface already built answers coverage's vertex distances: the same figures
+    as a tree of its own."""
+    from dgpc_cli.core.reference import ReferenceSurface
+    from dgpc_cli.metrics.coverage import coverage
+
+    f = sphere_net()
+    v, faces = net_triangles(f[1:-1])                        # a reference smaller than the net
+    noisy = f + 1e-3 * np.random.default_rng(2).standard_normal(f.shape)
+    own = coverage(noisy, v, faces)
+    lent = coverage(noisy, v, faces, surface=ReferenceSurface(v, faces))
+    assert own["vertex_distance_max"] > 1e-3
+    assert lent == pytest.approx(own, rel=1e-12)

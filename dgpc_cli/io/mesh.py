@@ -5,6 +5,8 @@ from __future__ import annotations
 import hashlib
 import io
 import logging
+import re
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -18,6 +20,9 @@ from .coordinates import bad_rows, coordinate_problem
 log = logging.getLogger(__name__)
 
 FORMATS = ("obj", "ply", "stl", "off")
+#: The ``v`` and ``f`` lines of an OBJ (what follows the keyword).
+_OBJ_VERTEX = re.compile(rb"^v (.*)$", re.MULTILINE)
+_OBJ_FACE = re.compile(rb"^f (.*)$", re.MULTILINE)
 #: Triangles thinner than this fraction of the bounding-box diagonal count as degenerate.
 DEGENERATE_HEIGHT = 1e-10
 
@@ -53,15 +58,17 @@ def _plain_obj(data: bytes):
     """(vertices, faces) of an OBJ that holds only ``v x y z`` lines and triangles ``f i j k``
     of positive indices (besides comments, groups and the like), parsed by numpy at a fraction
     of trimesh's time; None for anything else (trimesh reads those)."""
-    lines = data.split(b"\n")
-    v = [ln[2:] for ln in lines if ln.startswith(b"v ")]
-    f = [ln[2:] for ln in lines if ln.startswith(b"f ")]
-    if not v or not f or any(b"/" in ln or b"-" in ln for ln in f):
+    v = _OBJ_VERTEX.findall(data)
+    f = _OBJ_FACE.findall(data)
+    faces = b" ".join(f)
+    if not v or not f or b"/" in faces or b"-" in faces:
         return None
     try:
-        vertices = np.array(b" ".join(v).split(), dtype=np.float64)
-        faces = np.array(b" ".join(f).split(), dtype=np.int64)
-    except ValueError:
+        with warnings.catch_warnings():  # numpy 1.x warns where 2.x raises
+            warnings.simplefilter("error", DeprecationWarning)
+            vertices = np.fromstring(b" ".join(v), dtype=np.float64, sep=" ")
+            faces = np.fromstring(faces, dtype=np.int64, sep=" ")
+    except (ValueError, DeprecationWarning):
         return None
     if vertices.size != 3 * len(v) or faces.size != 3 * len(f):
         return None                      # colours after coordinates, polygons: trimesh

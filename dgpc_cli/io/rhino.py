@@ -33,9 +33,9 @@ import json
 import tempfile
 import uuid
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import rhino3dm
 
 from ..errors import DgpcError
 from .artifact import artifact_paths, dumps_json, relative_input, validate_envelope
@@ -43,12 +43,14 @@ from .flat import side_by_side
 from .obj import net_quads
 from .sheets import transform
 
+if TYPE_CHECKING:
+    import rhino3dm
+
 #: Namespace of the deterministic layer and object ids.
 ID_NAMESPACE = uuid.UUID("6f1d2a4e-3c5b-4e7a-9d21-0d9c3a7b5e10")
-#: Rhino's unit system of each length unit.
-UNIT_SYSTEMS = {"mm": rhino3dm.UnitSystem.Millimeters, "cm": rhino3dm.UnitSystem.Centimeters,
-                "m": rhino3dm.UnitSystem.Meters, "in": rhino3dm.UnitSystem.Inches,
-                "ft": rhino3dm.UnitSystem.Feet}
+#: Rhino's unit system (a ``rhino3dm.UnitSystem`` member) of each length unit.
+UNIT_SYSTEMS = {"mm": "Millimeters", "cm": "Centimeters", "m": "Meters", "in": "Inches",
+                "ft": "Feet"}
 #: Layer colours (RGBA) by the last part of a layer's path.
 COLORS = {"Net": (128, 128, 128, 255), "Geodesics": (200, 30, 30, 255),
           "CUT": (220, 0, 0, 255), "SCORE": (0, 0, 220, 255), "LABEL": (0, 150, 0, 255),
@@ -62,13 +64,17 @@ SHEET_GAP = 0.1
 
 class Model:
     """A ``rhino3dm.File3dm`` in ``units`` with layers (paths ``Parent::Child``) and named
-    objects carrying user text."""
+    objects carrying user text. rhino3dm is imported here, not with the module: most commands
+    write no 3dm, and it takes a tenth of a second to load."""
 
     def __init__(self, units: str, kind: str) -> None:
+        import rhino3dm
+
         if units not in UNIT_SYSTEMS:
             raise DgpcError(f"unknown length unit {units!r}", source="data.units")
+        self._rh = rhino3dm
         self.file = rhino3dm.File3dm()
-        self.file.Settings.ModelUnitSystem = UNIT_SYSTEMS[units]
+        self.file.Settings.ModelUnitSystem = getattr(rhino3dm.UnitSystem, UNIT_SYSTEMS[units])
         self.file.ApplicationName = "dgpc"
         self.kind = kind
         self._layers: dict[str, int] = {}
@@ -78,7 +84,7 @@ class Model:
         """The index of the layer ``path`` (``"Sheet01::CUT"``), made with its parents."""
         if path not in self._layers:
             parent, _, name = path.rpartition("::")
-            layer = rhino3dm.Layer()
+            layer = self._rh.Layer()
             layer.Name = name
             layer.Id = str(uuid.uuid5(ID_NAMESPACE, "layer/" + path))
             if parent:
@@ -89,7 +95,7 @@ class Model:
         return self._layers[path]
 
     def _attributes(self, layer: str, name: str, info: dict) -> rhino3dm.ObjectAttributes:
-        attrs = rhino3dm.ObjectAttributes()
+        attrs = self._rh.ObjectAttributes()
         attrs.LayerIndex = self.layer(layer)
         attrs.Name = name
         for key, value in {"id": name, "kind": self.kind, **info}.items():
@@ -103,14 +109,14 @@ class Model:
         return attrs
 
     def mesh(self, layer: str, name: str, vertices, quads, info: dict | None = None) -> None:
-        mesh = rhino3dm.Mesh()
+        mesh = self._rh.Mesh()
         points = np.asarray(vertices, float).reshape(-1, 3).tolist()
         for x, y, z in points:
             mesh.Vertices.Add(x, y, z)
         # Add stores floats; switch to double precision, then set each vertex exactly.
         mesh.Vertices.UseDoublePrecisionVertices = True
         for i, (x, y, z) in enumerate(points):
-            mesh.Vertices.SetPoint3dAt(i, rhino3dm.Point3d(x, y, z))
+            mesh.Vertices.SetPoint3dAt(i, self._rh.Point3d(x, y, z))
         for a, b, c, d in np.asarray(quads, int).reshape(-1, 4).tolist():
             mesh.Faces.AddFace(a, b, c, d)
         self.file.Objects.AddMesh(mesh, self._attributes(layer, name, info or {}))
@@ -118,7 +124,7 @@ class Model:
     def polyline(self, layer: str, name: str, points, *, closed: bool = False,
                  info: dict | None = None) -> None:
         pts = _xyz(points)
-        polyline = rhino3dm.Polyline(len(pts) + int(closed))
+        polyline = self._rh.Polyline(len(pts) + int(closed))
         for x, y, z in pts.tolist():
             polyline.Add(x, y, z)
         if closed:
@@ -127,7 +133,7 @@ class Model:
 
     def dot(self, layer: str, name: str, text: str, point, info: dict | None = None) -> None:
         x, y, z = _xyz(np.asarray(point, float).reshape(1, -1))[0].tolist()
-        self.file.Objects.AddTextDot(text, rhino3dm.Point3d(x, y, z),
+        self.file.Objects.AddTextDot(text, self._rh.Point3d(x, y, z),
                                      self._attributes(layer, name, info or {}))
 
     def to_bytes(self) -> bytes:

@@ -80,12 +80,16 @@ def _covered_samples(f: np.ndarray, rv: np.ndarray, rf: np.ndarray, samples: int
     return ~on_boundary & (np.sqrt(d2) <= reach), weight, nv, nf
 
 
-def coverage(f, ref_vertices, ref_faces, *, samples: int = DEFAULT_SAMPLES) -> dict:
+def coverage(f, ref_vertices, ref_faces, *, samples: int = DEFAULT_SAMPLES,
+             surface=None) -> dict:
     """Area coverage of the reference by the net ``f (m, n, 3)`` and vertex distances::
 
         {"area_fraction": covered / reference area, "covered_area", "reference_area",
          "vertex_distance_max": max distance of a net vertex to the reference,
          "vertex_distance_relative": the same / the reference's bounding-box diagonal}
+
+    ``surface``: the reference as a :class:`~dgpc_cli.core.reference.ReferenceSurface`
+    already built (its tree answers the vertex distances instead of a new one).
     """
     import igl
 
@@ -94,8 +98,11 @@ def coverage(f, ref_vertices, ref_faces, *, samples: int = DEFAULT_SAMPLES) -> d
     rf = np.ascontiguousarray(ref_faces, dtype=np.int64)
     covered, weight, nv, _ = _covered_samples(f, rv, rf, samples)
     total = float(weight.sum())
-    vd2, _, _ = igl.point_mesh_squared_distance(np.ascontiguousarray(nv), rv, rf)
-    vmax = float(np.sqrt(np.max(vd2)))
+    if surface is None:
+        vd2, _, _ = igl.point_mesh_squared_distance(np.ascontiguousarray(nv), rv, rf)
+        vmax = float(np.sqrt(np.max(vd2)))
+    else:
+        vmax = float(np.max(np.linalg.norm(nv - surface.closest(nv)[0], axis=1)))
     diagonal = float(np.linalg.norm(np.ptp(rv, axis=0)))
     return {"area_fraction": float(weight[covered].sum() / total) if total > 0 else None,
             "covered_area": float(weight[covered].sum()), "reference_area": total,

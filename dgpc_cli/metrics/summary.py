@@ -54,7 +54,7 @@ def _stats(x: np.ndarray) -> dict:
     return {"min": float(x.min()), "max": float(x.max()), "mean": float(x.mean())}
 
 
-def net_metrics(f, *, axis=None, against=None, reference=None) -> dict:
+def net_metrics(f, *, axis=None, against=None, reference=None, surface=None) -> dict:
     """Metrics of a net ``f (m, n, 3)`` from its vertex positions (SPEC §7).
 
     Always::
@@ -73,7 +73,8 @@ def net_metrics(f, *, axis=None, against=None, reference=None) -> dict:
     against the reference net ``against (m, n, 3)`` (§6.1), ``hausdorff`` to ``reference`` =
     ``(vertices (k, 3), faces (l, 3))`` (see :func:`~dgpc_cli.metrics.hausdorff.hausdorff`) and
     ``coverage`` of it (area fraction, vertex distances; see
-    :func:`~dgpc_cli.metrics.coverage.coverage`).
+    :func:`~dgpc_cli.metrics.coverage.coverage`; ``surface``, the reference's
+    :class:`~dgpc_cli.core.reference.ReferenceSurface` if one is built, lends it its tree).
     Values are plain floats/ints/lists; undefined values are None, never NaN.
     """
     f = as_grid(f)
@@ -102,5 +103,5 @@ def net_metrics(f, *, axis=None, against=None, reference=None) -> dict:
         except (TypeError, ValueError):
             raise ValueError("reference must be a (vertices, faces) pair") from None
         out["hausdorff"] = hausdorff(f, vertices, faces)
-        out["coverage"] = coverage(f, vertices, faces)
+        out["coverage"] = coverage(f, vertices, faces, surface=surface)
     return jsonable(out)

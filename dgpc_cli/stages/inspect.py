@@ -105,10 +105,14 @@ def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact 
 
 def summarize(net: NetArtifact, *, axis=None, mesh=None,
               against: NetArtifact | None = None, surface=None) -> dict:
-    """All metrics of a net (SPEC §7) as a JSON-able dict; ``mesh`` a ReferenceMesh or None."""
+    """All metrics of a net (SPEC §7) as a JSON-able dict; ``mesh`` a ReferenceMesh or None,
+    ``surface`` the ReferenceSurface the net was fitted to (``fit_surface`` of ``mesh``, in the
+    net's units) when one is built: its tree serves the residuals and, for a net not extended
+    past ``mesh``, the coverage."""
     axis = axis if axis is not None else recorded_axis(net)
     metrics = net_metrics(net.f, axis=axis, against=against.f if against is not None else None,
-                          reference=(mesh.vertices, mesh.faces) if mesh is not None else None)
+                          reference=(mesh.vertices, mesh.faces) if mesh is not None else None,
+                          surface=surface if mesh is not None and net.extend <= 0 else None)
     norms, R = constraint_residuals(net, mesh, against, surface)
     metrics["R"] = R
     metrics["residuals"] = norms
