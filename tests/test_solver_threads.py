@@ -27,7 +27,7 @@ def test_optimize_writes_the_same_bytes_whatever_the_environment_asks(tmp_path):
     out = {}
     for threads in ("1", "2"):
         env = {**os.environ, "MKL_NUM_THREADS": threads, "OMP_NUM_THREADS": threads,
-               "MKL_DYNAMIC": "TRUE"}
+               "OPENBLAS_NUM_THREADS": threads, "MKL_DYNAMIC": "TRUE"}
         stem = tmp_path / f"t{threads}"
         subprocess.run([DGPC, "-q", "optimize", tmp_path / "n0", "--mode", "revolution",
                         "--max-strain", "1", "-o", stem], check=True, capture_output=True,
@@ -36,6 +36,24 @@ def test_optimize_writes_the_same_bytes_whatever_the_environment_asks(tmp_path):
                         stem.with_suffix(".json").read_bytes().replace(b"t1.obj", b"")
                         .replace(b"t2.obj", b""))
     assert out["1"] == out["2"]
+
+
+def test_the_solver_runs_openblas_on_one_thread():
+    """Inside guided projection numpy's OpenBLAS has one thread (its threads would wait for
+    the cores MKL's spin on, and a sum's order would follow the core count); outside, what the
+    process had before."""
+    code = ("from threadpoolctl import threadpool_info, threadpool_limits\n"
+            "import numpy as np\n"
+            "from dgpc_cli.core.solver.linear import blas_on_one_thread\n"
+            "def blas():\n"
+            "    return {i['num_threads'] for i in threadpool_info()\n"
+            "            if i['internal_api'] == 'openblas'}\n"
+            "threadpool_limits(2, user_api='blas')\n"
+            "assert blas() == {2}, 'numpy without OpenBLAS'\n"
+            "inside = blas_on_one_thread(blas)()\n"
+            "assert inside == {1} and blas() == {2}, (inside, blas())\n")
+    subprocess.run([sys.executable, "-c", code], check=True,
+                   env={**os.environ, "OPENBLAS_NUM_THREADS": "2"})
 
 
 @pytest.mark.skipif(platform.machine() != "x86_64", reason="MKL PARDISO is x86_64 only")

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from dgpc_cli.core.solver.linear import make_solver
+from dgpc_cli.core.solver.linear import blas_on_one_thread, make_solver
 from dgpc_cli.core.solver.normal_matrix import NormalMatrix
 from dgpc_cli.core.solver.schedule import Schedule
 
@@ -127,6 +127,7 @@ def _stack(jacs, phis):
     return rows, cols, vals
 
 
+@blas_on_one_thread
 def guided_projection(
     x0: np.ndarray,
     terms: list[Term],
