@@ -59,13 +59,8 @@ class OptimizeOutcome:
 #: A drag's intermediate handle step only has to bring the net close enough to carry on: at
 #: most STEP_MAX_ITER iterations, done at a hard residual of STEP_TOL or when the objective falls
 #: by less than 1 − STEP_RATIO over STEP_WINDOW iterations; its last step stops on that ratio
-#: over LAST_WINDOW iterations, or over FOLLOWED_WINDOW where relaxation rounds or a projection
-#: follow (the solver's defaults, 0.999 over 20, hold without handles). FOLLOWED_WINDOW 7 rather
-#: than 10 saves the Gehry facades 3–7 iterations at the same nets (21×13: strain, gpc defect
-#: and pleat to 3 digits); 5 would save 2 more but ended the 9×7 timber wall elsewhere (largest
-#: strain 9.0e-4 → 1.05e-3).
+#: over LAST_WINDOW iterations (the solver's defaults, 0.999 over 20, hold without handles).
 STEP_MAX_ITER, STEP_TOL, STEP_WINDOW, STEP_RATIO, LAST_WINDOW = 10, 1e-4, 5, 0.99, 10
-FOLLOWED_WINDOW = 7
 
 #: Net boundary vertices closer than this fraction of the mean edge length to the reference's
 #: boundary start on it; the ``boundary`` term keeps them there.
@@ -302,10 +297,10 @@ def _default_budget(steps: int, drag: bool, relax: bool, pulling: bool) -> int:
 def _step_limits(s: int, steps: int, drag: bool, max_iter: int, tol: float,
                  projected: bool = False) -> dict:
     """Stopping rules of handle step ``s`` of ``steps`` (see ``STEP_MAX_ITER``). A run
-    without handles that a projection follows when it stalls (``projected``: its soft terms or
-    regularizers pull, or it fits a triangle mesh, see ``RELEASE_R``) stops once its objective
-    falls by less than 1 − STEP_RATIO over LAST_WINDOW iterations: what it still gains there the
-    projection would undo; the last step of such a drag over FOLLOWED_WINDOW iterations."""
+    without handles that a projection follows when it stalls (its soft terms or regularizers
+    pull, or it fits a triangle mesh, see ``RELEASE_R``) stops once its objective falls by less
+    than 1 − STEP_RATIO over LAST_WINDOW iterations: what it still gains there the projection
+    would undo."""
     if not drag:
         if projected:
             return {"max_iter": max_iter, "tol": tol, "stagnation_window": LAST_WINDOW,
@@ -314,10 +309,7 @@ def _step_limits(s: int, steps: int, drag: bool, max_iter: int, tol: float,
     if s < steps:
         return {"max_iter": min(max_iter, STEP_MAX_ITER), "tol": max(tol, STEP_TOL),
                 "stagnation_window": STEP_WINDOW, "stagnation_ratio": STEP_RATIO}
-    # the last step: relaxation rounds or a projection that follow move the net further than
-    # the last per cent of its objective would, so it stalls over a shorter window before them
-    return {"max_iter": max_iter, "tol": tol,
-            "stagnation_window": FOLLOWED_WINDOW if projected else LAST_WINDOW,
+    return {"max_iter": max_iter, "tol": tol, "stagnation_window": LAST_WINDOW,
             "stagnation_ratio": STEP_RATIO}
 
 
