@@ -161,3 +161,27 @@ def test_a_drag_left_above_the_gpc_margin_weighs_the_angle_condition_more(tmp_pa
     assert read_net(tmp_path / "net").status["state"] == "converged"
     assert m["gpc_angle_defect_max"] <= TOL.gpc_tol and m["strain"]["max"] <= TOL.max_strain
     assert m["pleat_max"] <= 0.5 * TOL.pleat
+
+
+def test_a_relaxation_round_that_begins_to_pleat_ends_there(tmp_path):
+    """Gehry facade 3 at 21×13: the first round at a lower smoothness pleats from its eighth
+    iteration on, monotonically, and would be refused at its end; it ends as soon as the pleat
+    passes half its tolerance (it took 21 iterations before), and the round with (6) weighed
+    more lands the net as before: converged, no pleat, strain within the tolerance."""
+    from pathlib import Path
+
+    from dgpc_cli.stages.optimize import RELAX_ITER
+
+    root = Path(__file__).resolve().parents[1]
+    dgpc("init", "--surface", "revolution", "--profile", root / "samples/profiles/gehry.csv",
+         "--units", "m", "--rows", 21, "--cols", 13, "--span", 90, "-o", tmp_path / "base")
+    r = dgpc("-v", "optimize", tmp_path / "base", "--mode", "isometric", "--handles",
+             root / "samples/handles/gehry-3-21x13.json", "--steps", 5, "-o", tmp_path / "net")
+    assert "ended early: the net began to pleat" in r.stderr
+    net = read_net(tmp_path / "net")
+    refused = [s for s in net.status["steps"] if s["status"] == "rejected"]
+    assert refused and all(s["iterations"] <= RELAX_ITER // 3 for s in refused)  # 8; 21 before
+    assert net.status["state"] == "converged"
+    m = metrics(tmp_path / "net", "--against", tmp_path / "base")
+    assert m["pleat_max"] <= 0.5 * TOL.pleat and m["strain"]["max"] <= TOL.max_strain
+    assert m["gpc_angle_defect_max"] <= TOL.gpc_tol

@@ -64,7 +64,8 @@ class SolverResult:
     """Outcome of :func:`guided_projection` (cf. ``scipy.optimize.OptimizeResult``).
 
     ``status`` is ``converged`` (hard residual ≤ tol, soft terms ≤ tol or no longer falling, every
-    schedule settled), ``stagnated`` (hard residual above tol and no progress), ``max_iter`` or
+    schedule settled), ``stagnated`` (hard residual above tol and no progress), ``max_iter``,
+    ``halted`` (the caller's ``halt`` gave a reason, in ``message``; x is the point it judged) or
     ``failed`` (non-finite residuals). ``R`` is the norm of the hard residuals at the returned x.
     ``history`` has one record per iteration: the unweighted residual norm of every term at x_k,
     the hard residual, the objective, the step norm and the seconds the iteration took.
@@ -141,6 +142,7 @@ def guided_projection(
     workspace: _Workspace | None = None,
     retract: Callable | None = None,
     callback: Callable | None = None,
+    halt: Callable[[np.ndarray], str | None] | None = None,
 ) -> SolverResult:
     """Run guided projection from ``x0`` until R ≤ ``tol``, stagnation, or ``max_iter``.
 
@@ -172,6 +174,10 @@ def guided_projection(
         auxiliary variables that leave every residual unchanged but the geometry's meaning.
     callback : callable, optional
         ``callback(k, record)`` after every iteration (progress bars).
+    halt : callable, optional
+        ``halt(x) -> reason or None`` at every new point that has not converged; a reason ends
+        the run there as ``halted`` (a caller that would reject where the run is heading
+        saves the rest of its iterations).
     """
     x = np.array(x0, dtype=float)
     history: list[dict] = []
@@ -183,6 +189,7 @@ def guided_projection(
     best = None                                   # (objective, x, phis, jacs, iteration)
     monotone_until = -1
     k = 0
+    moved = False                                 # x changed since halt last saw it
     while True:
         t0 = time.perf_counter()
         residuals = _norms(terms, phis)
@@ -205,6 +212,11 @@ def guided_projection(
             break
         if k >= max_iter:
             break
+        if halt is not None and moved:
+            moved = False
+            if reason := halt(x):
+                status, message = "halted", reason
+                break
         if stalled or mu > MU_MAX:
             status = "stagnated"
             message = f"hard residual {R:.3g} stopped falling above tol {tol:g}"
@@ -243,6 +255,7 @@ def guided_projection(
         if np.isfinite(trial_obj) and trial_obj < (KAPPA * KAPPA * obj if relaxed else obj):
             x = x + dx
             phis, jacs = trial
+            moved = True
             floor = min(MU_FAR, max(MU_MIN, MU_FLOOR_C * R * R)) if near else mu0
             mu = max(mu * MU_DOWN, floor)
             record["step"] = float(np.linalg.norm(dx))
@@ -257,7 +270,8 @@ def guided_projection(
         if callback is not None:
             callback(k, record)
         k += 1
-    if best is not None and best[0] < _objective([t.weight(k) for t in terms], phis):
+    if (status != "halted" and best is not None
+            and best[0] < _objective([t.weight(k) for t in terms], phis)):
         _, x, phis, _, _ = best                   # a relaxed step may have left the best
         residuals = _norms(terms, phis)
         R = _norm(terms, phis, True)
