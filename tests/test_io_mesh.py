@@ -129,6 +129,18 @@ def test_consistent_winding_restores_random_flips():
     assert np.array_equal(fixed[len(faces):], other)
 
 
+def test_consistent_winding_leaves_a_consistent_mesh_as_it_is():
+    """A consistent mesh comes back unchanged (a copy), also with a third face on an edge (not
+    a manifold edge, so it constrains nothing); one flipped face among them is turned back."""
+    mesh = load_mesh(DATA / "wave.obj")
+    a, b, _ = mesh.faces[0]
+    extra = np.array([[b, a, len(mesh.vertices)]])               # a third face on edge (a, b)
+    faces = np.concatenate([mesh.faces, extra])
+    same = consistent_winding(faces)
+    assert np.array_equal(same, faces) and same is not faces
+    flipped = faces.copy()
+    flipped[5] = flipped[5][::-1]
+    assert np.array_equal(consistent_winding(flipped), faces)
 @pytest.mark.parametrize("line_end", [b"\n", b"\r\n"])
 def test_plain_obj_reads_as_trimesh_does(tmp_path, line_end):
     """The fast reader of plain triangle OBJ files gives trimesh's vertices and faces (line

@@ -113,16 +113,20 @@ def consistent_winding(faces: np.ndarray) -> np.ndarray:
     key = np.sort(directed, axis=1)
     forward = directed[:, 0] < directed[:, 1]
     n = np.int64(faces.max()) + 1 if faces.size else np.int64(1)
-    _, inverse, counts = np.unique(key[:, 0] * n + key[:, 1], return_inverse=True,
-                                   return_counts=True)           # one int64 per edge
-    inverse = inverse.ravel()
-    order = np.argsort(inverse, kind="stable")
-    manifold = counts[inverse[order]] == 2
+    edge = key[:, 0] * n + key[:, 1]                             # one int64 per edge
+    order = np.argsort(edge, kind="stable")                      # half-edges by edge
+    ordered = edge[order]
+    start = np.flatnonzero(np.r_[True, ordered[1:] != ordered[:-1]])
+    counts = np.diff(np.r_[start, ordered.size])                 # half-edges of each edge
+    manifold = np.repeat(counts, counts) == 2
     pairs = order[manifold].reshape(-1, 2)  # the two half-edges of each manifold edge
     if len(pairs) == 0:
         return faces.copy()
     fa, fb = pairs[:, 0] // 3, pairs[:, 1] // 3
-    same = (forward[pairs[:, 0]] == forward[pairs[:, 1]]).astype(np.float64)
+    same = forward[pairs[:, 0]] == forward[pairs[:, 1]]
+    if not same.any():                      # already consistent: the forest would flip nothing
+        return faces.copy()
+    same = same.astype(np.float64)
     graph = sparse.coo_matrix((2.0 + same, (fa, fb)), shape=(t, t)).tocsr()
     forest = csgraph.minimum_spanning_tree(graph + graph.T)
     _, labels = csgraph.connected_components(forest, directed=False)
