@@ -165,9 +165,10 @@ def test_a_drag_left_above_the_gpc_margin_weighs_the_angle_condition_more(tmp_pa
 
 def test_a_relaxation_round_that_begins_to_pleat_ends_there(tmp_path):
     """Gehry facade 3 at 21×13: the first round at a lower smoothness pleats from its eighth
-    iteration on, monotonically, and would be refused at its end; it ends as soon as the pleat
-    passes half its tolerance (it took 21 iterations before), and the round with (6) weighed
-    more lands the net as before: converged, no pleat, strain within the tolerance."""
+    iteration on, monotonically, and would be refused at its end; it ends at the first point of
+    descent where the pleat passes half its tolerance (11 iterations; 21 before), and the round
+    with (6) weighed more lands the net as before: converged, no pleat, strain within the
+    tolerance."""
     from pathlib import Path
 
     from dgpc_cli.stages.optimize import RELAX_ITER
@@ -180,7 +181,7 @@ def test_a_relaxation_round_that_begins_to_pleat_ends_there(tmp_path):
     assert "ended early: the net began to pleat" in r.stderr
     net = read_net(tmp_path / "net")
     refused = [s for s in net.status["steps"] if s["status"] == "rejected"]
-    assert refused and all(s["iterations"] <= RELAX_ITER // 3 for s in refused)  # 8; 21 before
+    assert refused and all(s["iterations"] <= RELAX_ITER // 2 for s in refused)  # 11; 21 before
     assert net.status["state"] == "converged"
     m = metrics(tmp_path / "net", "--against", tmp_path / "base")
     assert m["pleat_max"] <= 0.5 * TOL.pleat and m["strain"]["max"] <= TOL.max_strain

@@ -175,9 +175,10 @@ def guided_projection(
     callback : callable, optional
         ``callback(k, record)`` after every iteration (progress bars).
     halt : callable, optional
-        ``halt(x) -> reason or None`` at every new point that has not converged; a reason ends
-        the run there as ``halted`` (a caller that would reject where the run is heading
-        saves the rest of its iterations).
+        ``halt(x) -> reason or None`` at every point a step of descent (the objective fell)
+        reached, unless it converged there; a reason ends the run there as ``halted`` (a caller
+        that would reject where the run is heading saves the rest of its iterations). Points
+        of the watchdog's non-monotone steps are not judged: the run may still come back.
     """
     x = np.array(x0, dtype=float)
     history: list[dict] = []
@@ -189,7 +190,7 @@ def guided_projection(
     best = None                                   # (objective, x, phis, jacs, iteration)
     monotone_until = -1
     k = 0
-    moved = False                                 # x changed since halt last saw it
+    moved = False                   # x came by a step of descent since halt last saw it
     while True:
         t0 = time.perf_counter()
         residuals = _norms(terms, phis)
@@ -255,7 +256,7 @@ def guided_projection(
         if np.isfinite(trial_obj) and trial_obj < (KAPPA * KAPPA * obj if relaxed else obj):
             x = x + dx
             phis, jacs = trial
-            moved = True
+            moved = trial_obj < obj                # halt judges points of descent only
             floor = min(MU_FAR, max(MU_MIN, MU_FLOOR_C * R * R)) if near else mu0
             mu = max(mu * MU_DOWN, floor)
             record["step"] = float(np.linalg.norm(dx))
