@@ -89,20 +89,17 @@ def coverage(f, ref_vertices, ref_faces, *, samples: int = DEFAULT_SAMPLES,
          "vertex_distance_relative": the same / the reference's bounding-box diagonal}
 
     ``surface``: the reference as a :class:`~dgpc_cli.core.reference.ReferenceSurface`
-    already built (its tree answers the vertex distances instead of a new one).
+    already built (its tree answers the vertex distances; built here otherwise).
     """
-    import igl
+    from dgpc_cli.core.reference import ReferenceSurface
 
     f = as_grid(f)
     rv = np.ascontiguousarray(ref_vertices, dtype=float)
     rf = np.ascontiguousarray(ref_faces, dtype=np.int64)
     covered, weight, nv, _ = _covered_samples(f, rv, rf, samples)
     total = float(weight.sum())
-    if surface is None:
-        vd2, _, _ = igl.point_mesh_squared_distance(np.ascontiguousarray(nv), rv, rf)
-        vmax = float(np.sqrt(np.max(vd2)))
-    else:
-        vmax = float(np.max(np.linalg.norm(nv - surface.closest(nv)[0], axis=1)))
+    surface = ReferenceSurface(rv, rf) if surface is None else surface
+    vmax = float(np.max(np.linalg.norm(nv - surface.closest(nv)[0], axis=1)))
     diagonal = float(np.linalg.norm(np.ptp(rv, axis=0)))
     return {"area_fraction": float(weight[covered].sum() / total) if total > 0 else None,
             "covered_area": float(weight[covered].sum()), "reference_area": total,

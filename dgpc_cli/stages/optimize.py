@@ -273,6 +273,9 @@ def _release(problem: Problem, x: np.ndarray, *, tol: float, backend: str, max_i
 #: steps near the solution: rounds of 20 left the Minding-bent half sphere at strain 1.7e-5
 #: instead of 4e-8).
 RELAX_FRACTIONS, RELAX_ITER, RELAX_GAIN = (1e-2, 1e-3, 0.0), 30, 0.9
+#: ... and while the pleat measure stays below this fraction of its tolerance (a round that
+#: passes it ends there and is refused).
+RELAX_PLEAT_MARGIN = 0.5
 #: ... and while the gpc angle defect stays within this fraction of --gpc-tol: the projection
 #: onto the hard terms that follows moves it (a cylinder twisted at 21×13: 9.8e-5 → 1.17e-4).
 RELAX_GPC_MARGIN = 0.5
@@ -337,6 +340,7 @@ def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targ
         return (float(np.nanmax(strain(g, f_input)[0])), largest_pleat(g),
                 float(np.nanmax(gpc_angle_defect(g))))
 
+    pleat_limit = RELAX_PLEAT_MARGIN * TOL.pleat
     best, _, current = measure(x)
     defect_limit = np.inf if gpc_tol is None else max(RELAX_GPC_MARGIN * gpc_tol, current)
     accepted = []
@@ -346,7 +350,7 @@ def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targ
     def pleating(xv) -> str | None:
         """Why a round is ended early: it pleats, and would be rejected at its end anyway."""
         corrugation = largest_pleat(problem.vertices(xv))
-        if corrugation > 0.5 * TOL.pleat:
+        if corrugation > pleat_limit:
             return f"the net began to pleat ({corrugation:.3g} mean edges)"
         return None
 
@@ -372,7 +376,7 @@ def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targ
         result, worst, corrugation, defect = round_at({name: weight},
                                                       f"{name} weight {weight:.0e}")
         if not (np.isfinite(worst) and worst <= RELAX_GAIN * best
-                and corrugation <= 0.5 * TOL.pleat and defect <= defect_limit):
+                and corrugation <= pleat_limit and defect <= defect_limit):
             result.status, result.x = "rejected", x      # its work counts, its net does not
             accepted.append(result)
             # no gain at this weight: one last try without it (an exact isometric deformation
@@ -380,7 +384,7 @@ def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targ
             # ended above its limit (less smoothness does not bring it back) or the net pleated
             # (Gehry facades 3–4: that try cost 21 iterations and ended at a larger strain)
             fractions = ([0.0] if fraction > 0 and defect <= defect_limit
-                         and corrugation <= 0.5 * TOL.pleat else [])
+                         and corrugation <= pleat_limit else [])
             continue
         slow = worst > RELAX_SLOW * best
         best, x, current, level = worst, result.x, defect, weight
@@ -397,7 +401,7 @@ def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targ
         result, worst, corrugation, defect = round_at({name: level, "gpc": gpc_weight},
                                                       f"gpc weight {gpc_weight:.0e}")
         if not (np.isfinite(worst) and worst <= strain_limit and defect < current
-                and corrugation <= 0.5 * TOL.pleat):
+                and corrugation <= pleat_limit):
             result.status, result.x = "rejected", x
             accepted.append(result)
             break
