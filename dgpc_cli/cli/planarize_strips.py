@@ -24,6 +24,7 @@ from dgpc_cli.stages.planarize import (
     trim_records,
 )
 from dgpc_cli.stages.soundness import require_sound_net
+from dgpc_cli.stages.strip_fabrication import fabrication_metrics
 
 log = logging.getLogger(__name__)
 
@@ -95,7 +96,9 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, output, force
         parameters={"strips": [columns[0], columns[-1]], "flat_angle": flat_angle,
                     "polish_above": POLISH_ABOVE, "trim": trim},
         inputs={"net": file_input(json_path, out_json.resolve().parent)},
-        metrics=strips_metrics(strips),
+        metrics={**strips_metrics(strips),
+                 "fabrication": fabrication_metrics(net.f, net.units, records,
+                                                    [(s.A, s.B) for s in strips], outline)},
         status={"polished": len(polished), "polish_not_converged": failed,
                 "rulings_cross": crossed})
     write_files(with_3dm(strips_files(output, art), output, fmt), force=force)

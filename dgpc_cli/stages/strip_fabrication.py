@@ -1,0 +1,77 @@
+"""Fabrication metrics of a strips artifact (SPEC §6 planarize-strips, §7; paper §6.2.4): end
+gaps, deviation from the net, seams, ruling turns, side ratios, planarity and areas of its
+strips (``strips.fabrication``), in mm, degrees and m², for ``planarize-strips`` to record and
+``dgpc inspect`` to recompute from the artifact's geometry and its net."""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+import numpy as np
+
+from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.units import mm_per_unit
+from dgpc_cli.strips.fabrication import measure_strips, part_end_gaps, summary
+
+log = logging.getLogger(__name__)
+
+
+def fabrication_metrics(f: np.ndarray, units: str, records: list[dict], geometry: list,
+                        reference=None) -> dict:
+    """``metrics.fabrication`` of the strips ``geometry[i] = (A, B)`` with the JSON
+    ``records[i]`` (``id``, ``v``, and ``trim`` for a trimmed strip) on the net ``f (m, n, 3)``,
+    all in ``units``; ``reference`` (a ``core.reference.ReferenceSurface`` in ``units``) the
+    outline the trimmed strips were clipped to (their end gaps are measured to it, their
+    areas against its area)."""
+    from dgpc_cli.strips.develop import develop_strip, signed_area
+    from dgpc_cli.strips.trim import strip_points
+
+    ids = [r["id"] for r in records]
+    measures = measure_strips(f, [(r["v"], A, B) for r, (A, B) in
+                                  zip(records, geometry, strict=True)])
+    part_gaps, part_areas, outline_area = {}, {}, None
+    trimmed = [(r, A, B) for r, (A, B) in zip(records, geometry, strict=True) if "trim" in r]
+    if trimmed and reference is not None:
+        for r, A, B in trimmed:
+            rings = [np.asarray(p["outline"], float) for p in r["trim"]["parts"]]
+            dev = develop_strip(A, B)
+            part_gaps[r["id"]] = [part_end_gaps(A, B, ring, reference) for ring in rings]
+            part_areas[r["id"]] = [abs(signed_area(strip_points(dev.A, dev.B, ring)))
+                                   for ring in rings]
+        tri = reference.vertices[reference.faces]
+        outline_area = float(0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0],
+                                                           tri[:, 2] - tri[:, 0]), axis=-1).sum())
+    return summary(ids, measures, mm_per_unit=mm_per_unit(units), part_gaps=part_gaps,
+                   part_areas=part_areas, outline_area=outline_area)
+
+
+def inspect_strips(json_path: Path) -> dict:
+    """The metrics of the strips artifact ``json_path``, with ``fabrication`` recomputed from
+    its geometry and the net it records (the recorded one when that net is not there or
+    changed, with a warning)."""
+    from dgpc_cli.core.reference import ReferenceSurface
+    from dgpc_cli.io.artifact import recorded_file
+    from dgpc_cli.io.net import read_net
+    from dgpc_cli.io.strips import read_strips
+    from dgpc_cli.stages.inspect import recorded_reference
+
+    art = read_strips(json_path)
+    metrics = dict(art.metrics)
+    try:
+        net_path = recorded_file(art.inputs.get("net"), json_path, "inputs.net")
+    except DgpcError as err:
+        log.warning("%s; fabrication metrics as recorded", err)
+        return metrics
+    net = read_net(net_path)
+    if net.units != art.units or net.shape != tuple(art.source_shape):
+        log.warning("%s: its net %s differs (units or grid); fabrication metrics as recorded",
+                    json_path, net_path)
+        return metrics
+    reference = None
+    if any("trim" in r for r in art.records):
+        mesh = recorded_reference(net, net_path)
+        reference = ReferenceSurface.from_mesh(mesh) if mesh is not None else None
+    metrics["fabrication"] = fabrication_metrics(net.f, art.units, art.records, art.geometry,
+                                                 reference)
+    return metrics
