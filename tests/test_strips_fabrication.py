@@ -10,6 +10,7 @@ import pytest
 from cli_helpers import dgpc
 
 from dgpc_cli.core.reference import ReferenceSurface
+from dgpc_cli.io.net import read_net
 from dgpc_cli.io.strips import read_strips
 from dgpc_cli.strips.fabrication import (
     end_gaps,
@@ -195,3 +196,74 @@ def test_inspect_prints_the_fabrication_metrics_in_mm_and_degrees(bent_strips):
     # a closed ring: every strip has two neighbours, last and first included only if both
     # are in the artifact (strip v and v+1)
     assert fab["max_seam_step"] is not None and fab["max_seam_step"] > 0
+
+
+def _figures(stem):
+    from dgpc_cli.report.render import style
+    from dgpc_cli.stages.report import PAGES
+
+    page = PAGES["strips"](stem.with_suffix(".json"))
+    with style():
+        return {name: make() for name, _, make in page.figures}
+
+
+def test_report_overlays_every_developed_strip_on_the_template(bent_strips):
+    stem = bent_strips / "strips"
+    art = read_strips(stem)
+    figs = _figures(stem)
+    (ax,) = [a for a in figs["template"].axes if a.get_gid() == "overlay"]
+    outlines = [ln for ln in ax.lines if (ln.get_gid() or "").startswith("outline:")]
+    assert [ln.get_gid() for ln in outlines] == [f"outline:{r['id']}" for r in art.records]
+    # every outline closed, as many vertices as the strip's A and B, and congruent to its
+    # strip's development (the same perimeter, mm)
+    from dgpc_cli.io.units import to_mm
+    from dgpc_cli.strips.develop import develop_strip
+
+    for ln, (A, B) in zip(outlines, art.geometry, strict=True):
+        x, y = ln.get_data()
+        assert len(x) == 2 * len(A) + 1 and (x[0], y[0]) == (x[-1], y[-1])
+        dev = develop_strip(to_mm(A, art.units), to_mm(B, art.units))
+        ring = np.concatenate([dev.A, dev.B[::-1], dev.A[:1]])
+        perimeter = np.linalg.norm(np.diff(ring, axis=0), axis=1).sum()
+        assert np.hypot(np.diff(x), np.diff(y)).sum() == pytest.approx(perimeter, rel=1e-9)
+    texts = [t.get_text() for a in figs["template"].axes for t in a.texts]
+    assert any(t.endswith(" mm") for t in texts)                     # a scale bar in mm
+
+
+def test_report_colours_the_deviation_in_mm_and_marks_the_stepped_seams(bent_strips):
+    from dgpc_cli.io.atomic import write_files
+    from dgpc_cli.io.strips import strips_files
+    from dgpc_cli.metrics.frames import tangent_frames
+    from dgpc_cli.stages.report import SEAM_STEP_MARK
+
+    art = read_strips(bent_strips / "strips")
+    f = read_net(bent_strips / "bent").f
+    A, B = art.geometry[1]                # strip 1 lifted 5 % of its width along its normal
+    lift = 0.05 * art.records[1]["width"] * tangent_frames(f, one_sided=True)[2][len(A) // 2, 1]
+    art.geometry[1] = (A + lift, B + lift)
+    art.metrics = {}
+    stem = bent_strips / "stepped"
+    write_files(strips_files(stem, art), force=True)
+    fab = json.loads(dgpc("inspect", stem).stdout)["fabrication"]
+    fig = figs = _figures(stem)["deviation"]
+    bar = [a for a in figs.axes if a.get_xlabel() == "deviation from the net strip [mm]"]
+    assert len(bar) == 1 and bar[0].get_xlim()[1] == pytest.approx(fab["max_deviation"])
+    view = [a for a in fig.axes if a.get_gid() == "view-axonometric"][0]
+    stepped = [c for c in view.collections if c.get_gid() == "seams-stepped"][0]
+    calm = [c for c in view.collections if c.get_gid() == "seams"][0]
+    mark = SEAM_STEP_MARK * fab["mean_width"]
+    assert fab["max_seam_step"] > mark                  # this ring's strips do step
+    assert len(stepped.get_segments()) > 0 and len(calm.get_segments()) > 0
+    rows = read_strips(stem).records[0]["rows"]
+    seams = sum(1 for r in fab["per_strip"].values() if r["seam_step"][1] is not None)
+    assert len(stepped.get_segments()) + len(calm.get_segments()) == seams * (rows - 1)
+
+
+def test_report_without_the_net_draws_the_strips_only(tmp_path, bent_strips):
+    import shutil
+
+    for name in ("strips.json", "strips.obj"):
+        shutil.copy(bent_strips / name, tmp_path / name)
+    assert set(_figures(tmp_path / "strips")) == {"width"}
+    out = json.loads(dgpc("inspect", tmp_path / "strips").stdout)
+    assert out["fabrication"] == read_strips(bent_strips / "strips").metrics["fabrication"]

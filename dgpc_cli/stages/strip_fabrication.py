@@ -6,6 +6,7 @@ strips (``strips.fabrication``), in mm, degrees and m², for ``planarize-strips`
 from __future__ import annotations
 
 import logging
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -46,28 +47,40 @@ def fabrication_metrics(f: np.ndarray, units: str, records: list[dict], geometry
                    part_areas=part_areas, outline_area=outline_area)
 
 
+def recorded_net(art, json_path: Path):
+    """``(net, path)``: the net a strips artifact ``art`` (read from ``json_path``) records as
+    ``inputs.net``, if it is there unchanged and matches the strips (units, grid); else None,
+    with a warning."""
+    from dgpc_cli.io.artifact import recorded_file
+    from dgpc_cli.io.net import read_net
+
+    try:
+        net_path = recorded_file(art.inputs.get("net"), json_path, "inputs.net")
+    except DgpcError as err:
+        log.warning("%s; no fabrication metrics from the geometry", err)
+        return None
+    net = read_net(net_path)
+    if net.units != art.units or net.shape != tuple(art.source_shape):
+        log.warning("%s: its net %s differs (units or grid); no fabrication metrics from the "
+                    "geometry", json_path, net_path)
+        return None
+    return net, net_path
+
+
 def inspect_strips(json_path: Path) -> dict:
     """The metrics of the strips artifact ``json_path``, with ``fabrication`` recomputed from
     its geometry and the net it records (the recorded one when that net is not there or
     changed, with a warning)."""
     from dgpc_cli.core.reference import ReferenceSurface
-    from dgpc_cli.io.artifact import recorded_file
-    from dgpc_cli.io.net import read_net
     from dgpc_cli.io.strips import read_strips
     from dgpc_cli.stages.inspect import recorded_reference
 
     art = read_strips(json_path)
     metrics = dict(art.metrics)
-    try:
-        net_path = recorded_file(art.inputs.get("net"), json_path, "inputs.net")
-    except DgpcError as err:
-        log.warning("%s; fabrication metrics as recorded", err)
+    found = recorded_net(art, json_path)
+    if found is None:
         return metrics
-    net = read_net(net_path)
-    if net.units != art.units or net.shape != tuple(art.source_shape):
-        log.warning("%s: its net %s differs (units or grid); fabrication metrics as recorded",
-                    json_path, net_path)
-        return metrics
+    net, net_path = found
     reference = None
     if any("trim" in r for r in art.records):
         mesh = recorded_reference(net, net_path)
@@ -75,3 +88,41 @@ def inspect_strips(json_path: Path) -> dict:
     metrics["fabrication"] = fabrication_metrics(net.f, art.units, art.records, art.geometry,
                                                  reference)
     return metrics
+
+
+@dataclass
+class FigureData:
+    """What the figures after paper Fig. 18 draw (``report.strips``): the developed strips
+    ``(id, A, B)`` in mm aligned on the first (the template) and the largest outline
+    distance from it ``template_error`` (mm); per strip the deviation per quad (mm); the
+    seams ``(X, step)``: each shared geodesic (strip v's B, in the artifact's unit) with the
+    step at its vertices (mm); the mean strip width (mm)."""
+
+    developed: list
+    template_error: float
+    deviation: list
+    seams: list
+    width: float
+
+
+def figure_data(art, f: np.ndarray) -> FigureData:
+    """:class:`FigureData` of the strips artifact ``art`` on its net ``f`` (both in
+    ``art.units``)."""
+    from dgpc_cli.io.units import to_mm
+    from dgpc_cli.strips.congruence import align
+    from dgpc_cli.strips.develop import develop_strip
+
+    k = mm_per_unit(art.units)
+    measures = measure_strips(f, [(r["v"], A, B) for r, (A, B) in
+                                  zip(art.records, art.geometry, strict=True)])
+    devs = [develop_strip(to_mm(A, art.units), to_mm(B, art.units)) for A, B in art.geometry]
+    developed, error = [], 0.0
+    for r, dev in zip(art.records, devs, strict=True):
+        al = align(dev.A, dev.B, devs[0].A, devs[0].B)
+        developed.append((r["id"], al.apply(dev.A), al.apply(dev.B)))
+        error = max(error, al.error)
+    seams = [(np.asarray(B, float), s.seams[s.v + 1][0] * k)
+             for s, (_, B) in zip(measures, art.geometry, strict=True) if s.v + 1 in s.seams]
+    return FigureData(developed=developed, template_error=error,
+                      deviation=[s.deviation * k for s in measures], seams=seams,
+                      width=float(np.mean([s.width for s in measures])) * k)
