@@ -267,3 +267,33 @@ def test_report_without_the_net_draws_the_strips_only(tmp_path, bent_strips):
     assert set(_figures(tmp_path / "strips")) == {"width"}
     out = json.loads(dgpc("inspect", tmp_path / "strips").stdout)
     assert out["fabrication"] == read_strips(bent_strips / "strips").metrics["fabrication"]
+
+
+def test_planarize_records_strips_that_build_the_design_and_warns_when_they_do_not(tmp_path):
+    """A cylinder's strips are its net strips: no end gap, the parts add up to the net's area
+    (the done-means check, within 0.1 %; here to round-off) and no warning. A twisted
+    catenoid's rulings slant, its strips stop short of the edge rows: a warning names it."""
+    dgpc("init", "--surface", "revolution", "--profile", "cylinder", "--rows", 9, "--cols", 5,
+         "--span", 90, "--units", "m", "-o", tmp_path / "cyl")
+    run = dgpc("planarize-strips", tmp_path / "cyl", "-o", tmp_path / "s")
+    fab = read_strips(tmp_path / "s").metrics["fabrication"]
+    assert fab["max_end_gap"] <= 1e-9 and abs(fab["area_ratio"] - 1) <= 1e-12
+    assert fab["mean_width"] > 100                       # mm, from a net in m
+    assert "warning" not in run.stderr
+    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 9, "--cols", 7,
+         "--span", 120, "--twist", 0.3, "-o", tmp_path / "tw")
+    run = dgpc("planarize-strips", tmp_path / "tw", "-o", tmp_path / "t")
+    fab = read_strips(tmp_path / "t").metrics["fabrication"]
+    assert fab["area_ratio"] < 0.999
+    assert f"the strips' area is {100 * fab['area_ratio']:.2f} % of the net's" in run.stderr
+
+
+def test_report_tables_label_the_fabrication_metrics_in_mm_degrees_and_m2():
+    from dgpc_cli.report.tables import metric_unit
+
+    units = {"fabrication.max_end_gap": "mm", "fabrication.per_strip.seam_step": "mm",
+             "fabrication.max_ruling_angle": "°", "fabrication.area": "m²",
+             "fabrication.max_side_ratio": "", "fabrication.area_ratio": "",
+             "fabrication.max_deviation_relative": "", "fabrication.units.area": "",
+             "max_deviation": "", "per_strip.deviation": "", "per_strip.width": "m"}
+    assert {k: metric_unit(k, "m") for k in units} == units

@@ -24,7 +24,7 @@ from dgpc_cli.stages.planarize import (
     trim_records,
 )
 from dgpc_cli.stages.soundness import require_sound_net
-from dgpc_cli.stages.strip_fabrication import fabrication_metrics
+from dgpc_cli.stages.strip_fabrication import fabrication_metrics, fabrication_warnings
 
 log = logging.getLogger(__name__)
 
@@ -103,6 +103,8 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, output, force
                 "rulings_cross": crossed})
     write_files(with_3dm(strips_files(output, art), output, fmt), force=force)
     click.echo(str(out_json))
+    for note in fabrication_warnings(art.metrics["fabrication"]):
+        log.warning("%s: %s", out_json, note)
     log.info("%s: %d strips, max planarity %.3g, max deviation %.3g of the width", out_json,
              len(strips), art.metrics["max_planarity"], art.metrics["max_deviation"])
     if failed:

@@ -42,12 +42,13 @@ ITEMS = {"per_part": "per part", "per_strip": "per strip", "classes": "congruenc
          "fabrication.per_strip": "fabrication per strip"}
 #: Lists of numbers longer than this are summarised (count, min, max) rather than listed.
 LIST_MAX = 12
-#: Metrics (last part of the dotted key) that are lengths in the artifact's unit.
+#: Metrics (last part of the dotted key) that are lengths in the artifact's unit (a strip's
+#: ``deviation`` is not: it is relative to the strip's width).
 LENGTHS = {"length", "width", "height", "profile_length", "radius_max", "radius_min",
            "total_length", "length_total", "length_max", "crossing_gap_max", "diagonal",
            "jacobi_residual_max", "vertex_distance_max", "mean_radius", "mean_abs", "max_mad",
            "net_to_reference_max", "net_to_reference_mean", "reference_to_net_max",
-           "reference_to_net_mean", "deviation", "max_deviation", "straightness",
+           "reference_to_net_mean", "straightness",
            "max_straightness", "mad", "meridian_length"}
 #: ... that are areas.
 AREAS = {"total_area", "covered_area", "reference_area", "area"}
@@ -74,9 +75,11 @@ def metric_unit(key: str, units: str) -> str:
     parts = key.split(".")
     head, last = parts[0], parts[-1].split("[")[0]
     if head == "fabrication":
+        if parts[1] == "units":
+            return ""
         if last in FABRICATION_UNITS:
             return FABRICATION_UNITS[last]
-        plain = "ratio" in last or "relative" in last or parts[1] in ("units", "area_reference")
+        plain = "ratio" in last or "relative" in last or last == "area_reference"
         return "" if plain else "mm"
     if last in AREAS:
         return f"{units}²"

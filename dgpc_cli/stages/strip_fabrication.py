@@ -17,6 +17,30 @@ from dgpc_cli.strips.fabrication import measure_strips, part_end_gaps, summary
 
 log = logging.getLogger(__name__)
 
+#: Warn when a strip ends farther than this (mm) from the net's edge row (issue "Strips that
+#: build the design": end gaps ≤ 1 mm) ...
+END_GAP_WARN = 1.0
+#: ... or when the strips' area differs from the net's (or the outline's) by more than this
+#: share (the parts add up to the design's area within 0.1 %).
+AREA_WARN = 1e-3
+
+
+def fabrication_warnings(fab: dict) -> list[str]:
+    """One line per way the strips of ``metrics.fabrication`` fail to build the design: end
+    gaps above :data:`END_GAP_WARN`, an area off by more than :data:`AREA_WARN`."""
+    out = []
+    gap, ratio = fab["max_end_gap"], fab["area_ratio"]
+    if gap == gap and gap > END_GAP_WARN:
+        worst = max(fab["per_strip"], key=lambda i: max(abs(g) for g in
+                                                        fab["per_strip"][i]["end_gaps"]
+                                                        if g is not None))
+        out.append(f"strips end up to {gap:.4g} mm from the net's edge rows ({worst}): built "
+                   "as cut, the design has gaps along its edges")
+    if ratio is not None and abs(ratio - 1.0) > AREA_WARN:
+        out.append(f"the strips' area is {100 * ratio:.2f} % of the {fab['area_reference']}'s "
+                   f"({fab['area']:.4g} of {fab['reference_area']:.4g} m²)")
+    return out
+
 
 def fabrication_metrics(f: np.ndarray, units: str, records: list[dict], geometry: list,
                         reference=None) -> dict:
