@@ -11,7 +11,11 @@ show the model in three framed views with a scale bar (:mod:`dgpc_cli.report.vie
   (Fig. 13: principal directions over |λ1| + |λ2|); ``PREFIX-clairaut.png`` when the net
   records an axis in ``data.surface.axis`` (Fig. 11, the geodesics the metric checks);
   ``PREFIX-convergence.png`` when it records a solver history (``status.steps``);
-* strips: ``PREFIX-width.png``, the planar-quad strips coloured by their width;
+* strips: ``PREFIX-width.png``, the planar-quad strips coloured by their width; when the net
+  (``inputs.net``) is there unchanged, paper Fig. 18: ``PREFIX-template.png`` (every developed
+  strip overlaid on the template, the first one, its ends magnified) and
+  ``PREFIX-deviation.png`` (the strips coloured by their deviation from the net in mm, the
+  seams stepping more than 1 % of the strip width in red);
 * flat: ``PREFIX-overlay.png`` (every part on its class representative, one cell per class,
   Fig. 18 bottom-right) and ``PREFIX-strips.png`` (the parts laid out like a sheet, Fig. 18
   bottom-left);

@@ -30,7 +30,7 @@ def fabrication_warnings(fab: dict) -> list[str]:
     gaps above :data:`END_GAP_WARN`, an area off by more than :data:`AREA_WARN`."""
     out = []
     gap, ratio = fab["max_end_gap"], fab["area_ratio"]
-    if gap == gap and gap > END_GAP_WARN:
+    if gap is not None and gap == gap and gap > END_GAP_WARN:
         worst = max(fab["per_strip"], key=lambda i: max(abs(g) for g in
                                                         fab["per_strip"][i]["end_gaps"]
                                                         if g is not None))

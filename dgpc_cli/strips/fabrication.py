@@ -250,7 +250,8 @@ def summary(ids: list[str], measures: list[StripMeasures], *, mm_per_unit: float
     signed as :func:`end_gaps`), ``deviation``, ``planarity``, ``seam_step`` and ``seam_gap``
     [to strip v−1, to strip v+1] (null without that neighbour), ``ruling_angle`` (the largest
     between neighbouring rulings), ``side_ratio`` (the largest longest-over-shortest side),
-    ``width``, ``area`` and ``area_ratio`` (over the net strip's). For a trimmed strip
+    ``width``, ``area`` and ``area_ratio`` (over the net strip's); non-finite values (a
+    collapsed quad side's ratio, a missing measure) become null in the JSON. For a trimmed strip
     ``part_gaps[id]`` (its parts' :func:`part_end_gaps`) replace the end gaps and
     ``part_areas[id]`` (its parts' areas) the area; the ratio is then taken over
     ``outline_area`` (the reference's, for all strips together) rather than the net's.
