@@ -31,6 +31,7 @@ import numpy as np
 
 from dgpc_cli.metrics.frames import tangent_frames, unit
 from dgpc_cli.strips.quality import diagonal_gap, patch_mesh, quad_deviation, strip_width
+from dgpc_cli.strips.trim import signed_outline_distance, strip_points
 
 __all__ = ["StripMeasures", "end_gaps", "measure_strips", "net_strip_area", "part_end_gaps",
            "polyline_foot", "ruling_angles", "seam_offsets", "side_ratios", "strip_area",
@@ -167,8 +168,6 @@ def part_end_gaps(A: np.ndarray, B: np.ndarray, ring: np.ndarray, reference) -> 
     (s = 0 for A, 1 for B), the distance over the reference to its outline
     (``trim.signed_outline_distance``: 0 on the outline, positive inside it, where the part
     stops short, negative beyond it). NaN for a boundary the part does not touch."""
-    from dgpc_cli.strips.trim import signed_outline_distance, strip_points
-
     ring = np.asarray(ring, float)
     out = np.full((2, 2), np.nan)
     for j, side in enumerate((0.0, 1.0)):
