@@ -16,6 +16,7 @@ from dgpc_cli.io.flat import read_flat
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.strips import read_strips
+from dgpc_cli.io.units import mm_per_unit
 from dgpc_cli.metrics.degenerate import degeneracies
 
 
@@ -125,6 +126,14 @@ def test_trimmed_strips_clad_the_whole_roof(extended, meshes):
                 worst = max(worst, float(np.linalg.norm(p - foot, axis=1).max())
                             / record["width"])
     assert worst <= 0.02
+    # the fabrication metrics measure the trimmed parts: against the outline, the parts'
+    # ends lie on it and their area is the flat parts' (m², from the net's unit)
+    fab = strips.metrics["fabrication"]
+    k = mm_per_unit(strips.units)
+    assert fab["area_reference"] == "outline"
+    assert fab["area"] == pytest.approx(total * k * k * 1e-6, rel=1e-9)
+    assert fab["reference_area"] == pytest.approx(area * k * k * 1e-6, rel=1e-9)
+    assert fab["max_end_gap"] <= 0.02 * fab["mean_width"]
 
 
 def test_trimmed_strips_clad_the_whole_clipped_dome(meshes):

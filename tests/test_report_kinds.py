@@ -14,6 +14,7 @@ from dgpc_cli.report.clairaut import CLAIRAUT_SIZE
 from dgpc_cli.report.convergence import CONVERGENCE_SIZE
 from dgpc_cli.report.mold import PAIRING_SIZE, PIECES_SIZE, PROFILE_SIZE
 from dgpc_cli.report.render import DPI
+from dgpc_cli.report.strips import TEMPLATE_SIZE
 from dgpc_cli.report.tables import ITEMS
 from dgpc_cli.report.views import VIEWS_SIZE
 from dgpc_cli.surfaces.minding import minding_bend
@@ -21,7 +22,7 @@ from dgpc_cli.surfaces.minding import minding_bend
 #: Figure sizes in inches, as rendered; the 3-D figures (width, curvature, strain) are
 #: VIEWS_SIZE, the flat parts' pages fit their content.
 SIZES = {"clairaut": CLAIRAUT_SIZE, "convergence": CONVERGENCE_SIZE, "profile": PROFILE_SIZE,
-         "pairing-net1": PAIRING_SIZE, "pieces": PIECES_SIZE}
+         "pairing-net1": PAIRING_SIZE, "pieces": PIECES_SIZE, "template": TEMPLATE_SIZE}
 
 
 @pytest.fixture(scope="module")
@@ -70,7 +71,7 @@ def _report(sample, stem, prefix):
 @pytest.mark.parametrize("stem, names", [
     ("net", ["width", "curvature", "clairaut"]),
     ("iso", ["width", "curvature", "strain", "convergence"]),   # deformed: off the surface
-    ("strips", ["width"]),
+    ("strips", ["width", "template", "deviation"]),
     ("flat", ["overlay", "strips"]),
     ("mold", ["profile", "pairing-net1", "pieces"]),
 ])

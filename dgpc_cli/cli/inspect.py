@@ -36,9 +36,9 @@ INSPECTORS = {"net": _inspect_net}
 
 
 def _inspect_strips(json_path: Path, **_) -> dict:
-    from dgpc_cli.io.strips import read_strips
+    from dgpc_cli.stages.strip_fabrication import inspect_strips
 
-    return read_strips(json_path).metrics
+    return inspect_strips(json_path)
 
 
 def _inspect_flat(json_path: Path, **_) -> dict:

@@ -24,6 +24,7 @@ from dgpc_cli.stages.planarize import (
     trim_records,
 )
 from dgpc_cli.stages.soundness import require_sound_net
+from dgpc_cli.stages.strip_fabrication import fabrication_metrics, fabrication_warnings
 
 log = logging.getLogger(__name__)
 
@@ -95,11 +96,15 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, output, force
         parameters={"strips": [columns[0], columns[-1]], "flat_angle": flat_angle,
                     "polish_above": POLISH_ABOVE, "trim": trim},
         inputs={"net": file_input(json_path, out_json.resolve().parent)},
-        metrics=strips_metrics(strips),
+        metrics={**strips_metrics(strips),
+                 "fabrication": fabrication_metrics(net.f, net.units, records,
+                                                    [(s.A, s.B) for s in strips], outline)},
         status={"polished": len(polished), "polish_not_converged": failed,
                 "rulings_cross": crossed})
     write_files(with_3dm(strips_files(output, art), output, fmt), force=force)
     click.echo(str(out_json))
+    for note in fabrication_warnings(art.metrics["fabrication"]):
+        log.warning("%s: %s", out_json, note)
     log.info("%s: %d strips, max planarity %.3g, max deviation %.3g of the width", out_json,
              len(strips), art.metrics["max_planarity"], art.metrics["max_deviation"])
     if failed:

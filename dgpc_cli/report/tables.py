@@ -28,6 +28,7 @@ FABRICATION = {
     # strips, flat parts
     "max_planarity", "max_deviation", "max_congruence_error", "max_strain", "max_straightness",
     "n_classes", "n_parts", "classes", "per_part", "per_strip", "total_area", "total_length",
+    "fabrication",
     # molds
     "pieces", "panels", "panels_flat", "panels_curved", "isometry_error_max",
     "sector_angle_deg",
@@ -37,18 +38,25 @@ FABRICATION = {
 }
 #: Records per item: (dotted key, title); dicts of records, or a dict of equally long lists.
 ITEMS = {"per_part": "per part", "per_strip": "per strip", "classes": "congruence classes",
-         "clairaut.per_geodesic": "Clairaut per geodesic"}
+         "clairaut.per_geodesic": "Clairaut per geodesic",
+         "fabrication.per_strip": "fabrication per strip"}
 #: Lists of numbers longer than this are summarised (count, min, max) rather than listed.
 LIST_MAX = 12
-#: Metrics (last part of the dotted key) that are lengths in the artifact's unit.
+#: Metrics (last part of the dotted key) that are lengths in the artifact's unit (a strip's
+#: ``deviation`` is not: it is relative to the strip's width).
 LENGTHS = {"length", "width", "height", "profile_length", "radius_max", "radius_min",
            "total_length", "length_total", "length_max", "crossing_gap_max", "diagonal",
            "jacobi_residual_max", "vertex_distance_max", "mean_radius", "mean_abs", "max_mad",
            "net_to_reference_max", "net_to_reference_mean", "reference_to_net_max",
-           "reference_to_net_mean", "deviation", "max_deviation", "straightness",
+           "reference_to_net_mean", "straightness",
            "max_straightness", "mad", "meridian_length"}
 #: ... that are areas.
 AREAS = {"total_area", "covered_area", "reference_area", "area"}
+#: Units of the strips' ``fabrication`` metrics (mm, degrees and m² whatever the artifact's
+#: unit), by the last part of the key: angles, areas; the other keys without ``ratio`` or
+#: ``relative`` in them are lengths.
+FABRICATION_UNITS = {"ruling_angle": "°", "max_ruling_angle": "°", "area": "m²",
+                     "reference_area": "m²"}
 #: Heads whose min / max / mean are lengths.
 LENGTH_STATS = {"edges", "hausdorff", "parallel_departure", "handle_miss"}
 
@@ -66,6 +74,13 @@ def metric_unit(key: str, units: str) -> str:
     """The unit of the metric at the dotted ``key`` (``""``: a count, a ratio, an index …)."""
     parts = key.split(".")
     head, last = parts[0], parts[-1].split("[")[0]
+    if head == "fabrication":
+        if parts[1] == "units":
+            return ""
+        if last in FABRICATION_UNITS:
+            return FABRICATION_UNITS[last]
+        plain = "ratio" in last or "relative" in last or last == "area_reference"
+        return "" if plain else "mm"
     if last in AREAS:
         return f"{units}²"
     if head == "gaussian_curvature":

@@ -11,7 +11,11 @@ show the model in three framed views with a scale bar (:mod:`dgpc_cli.report.vie
   (Fig. 13: principal directions over |λ1| + |λ2|); ``PREFIX-clairaut.png`` when the net
   records an axis in ``data.surface.axis`` (Fig. 11, the geodesics the metric checks);
   ``PREFIX-convergence.png`` when it records a solver history (``status.steps``);
-* strips: ``PREFIX-width.png``, the planar-quad strips coloured by their width;
+* strips: ``PREFIX-width.png``, the planar-quad strips coloured by their width; when the net
+  (``inputs.net``) is there unchanged, paper Fig. 18: ``PREFIX-template.png`` (every developed
+  strip overlaid on the template, the first one, its ends magnified) and
+  ``PREFIX-deviation.png`` (the strips coloured by their deviation from the net in mm, the
+  seams stepping more than 1 % of the strip width in red);
 * flat: ``PREFIX-overlay.png`` (every part on its class representative, one cell per class,
   Fig. 18 bottom-right) and ``PREFIX-strips.png`` (the parts laid out like a sheet, Fig. 18
   bottom-left);
@@ -207,9 +211,51 @@ def _strips_page(json_path: Path) -> Page:
              lambda: field_figure(grids, [width_per_quad(g) for g in grids],
                                   title=f"{len(grids)} planar-quad strips",
                                   label=f"strip width [{art.units}]", unit=art.units))]
+    figs += _fabrication_figures(art, json_path)
     header = Header(f"{len(grids)} geodesic strips made of planar quads "
                     "(dgpc planarize-strips).", _input_notes(art.inputs, json_path))
     return Page(figs, art.metrics, art.status, art.units, header)
+
+
+#: Seams are marked where their step exceeds this share of the mean strip width (issue
+#: "Strips that build the design": seam step ≤ 1 % of the width).
+SEAM_STEP_MARK = 0.01
+
+
+def _fabrication_figures(art, json_path: Path) -> list:
+    """Paper Fig. 18 for a strips artifact whose net is there: the developments overlaid on
+    the template, the deviation from the net and the seams (none without the net)."""
+    from dgpc_cli.report.strips import deviation_figure, template_overlay_figure
+    from dgpc_cli.stages.inspect import recorded_axis
+    from dgpc_cli.stages.strip_fabrication import figure_data, recorded_net
+
+    found = recorded_net(art, json_path)
+    if found is None:
+        return []
+    net = found[0]
+    data = figure_data(art, net.f)
+    mark = SEAM_STEP_MARK * data.width
+    axis = recorded_axis(net)
+    up = axis[1] if axis is not None else (0.0, 0.0, 1.0)
+    count = len(data.developed)
+    worst = max(float(d.max()) for d in data.deviation)
+    return [
+        ("template", f"Paper Fig. 18 bottom-right: the {count} developed strips, each moved "
+                     f"onto the template (the first strip, {data.developed[0][0]}) by the best "
+                     "rigid motion of its outline; the ends magnified below.",
+         lambda: template_overlay_figure(
+             data.developed, title=f"{counted(count, 'developed strip')} overlaid on the "
+                                   f"template {data.developed[0][0]}: outlines up to "
+                                   f"{data.template_error:.3g} mm apart")),
+        ("deviation", "The strips in 3-D, each quad coloured by its largest distance from the "
+                      "net strip (mm); the seams (the geodesics neighbouring strips share) in "
+                      f"red where the two strips' copies step more than {mark:.3g} mm apart "
+                      "along the surface normal (1 % of the mean strip width).",
+         lambda: deviation_figure(
+             [(np.asarray(A, float), np.asarray(B, float)) for A, B in art.geometry],
+             data.deviation, data.seams, threshold_mm=mark, unit=art.units, up=up,
+             title=f"deviation from the net, up to {worst:.3g} mm, and seams")),
+    ]
 
 
 def _flat_page(json_path: Path) -> Page:

@@ -13,20 +13,29 @@ PATCH_SUBDIVISIONS = 4
 QUAD_SAMPLES = 3
 
 
+def diagonal_gap(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """Distance between the lines of the two diagonals of every quad ``A_u, A_(u+1), B_(u+1),
+    B_u`` of a strip ``A, B (..., m, 3)``, in its unit: shape ``(..., m−1)``; zero exactly for
+    planar quads (the two diagonals of a planar quad intersect)."""
+    d1 = B[..., 1:, :] - A[..., :-1, :]          # A_u -> B_(u+1)
+    d2 = A[..., 1:, :] - B[..., :-1, :]          # B_u -> A_(u+1)
+    c = np.cross(d1, d2)
+    cn = np.linalg.norm(c, axis=-1)
+    gap = np.abs(np.einsum("...i,...i->...", B[..., :-1, :] - A[..., :-1, :], c))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(cn > 0, gap / np.where(cn > 0, cn, 1.0), 0.0)
+
+
 def planarity_defect(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     """Distance between the diagonals' lines over their mean length for every quad
     ``A_u, A_(u+1), B_(u+1), B_u`` of a strip ``A, B (..., m, 3)``: shape ``(..., m−1)``.
 
     Zero exactly for planar quads (the two diagonals of a planar quad intersect).
     """
-    d1 = B[..., 1:, :] - A[..., :-1, :]          # A_u -> B_(u+1)
-    d2 = A[..., 1:, :] - B[..., :-1, :]          # B_u -> A_(u+1)
-    c = np.cross(d1, d2)
-    cn = np.linalg.norm(c, axis=-1)
-    gap = np.abs(np.einsum("...i,...i->...", B[..., :-1, :] - A[..., :-1, :], c))
+    d1 = B[..., 1:, :] - A[..., :-1, :]
+    d2 = A[..., 1:, :] - B[..., :-1, :]
     mean = 0.5 * (np.linalg.norm(d1, axis=-1) + np.linalg.norm(d2, axis=-1))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(cn > 0, gap / np.where(cn > 0, cn, 1.0), 0.0) / mean
+    return diagonal_gap(A, B) / mean
 
 
 def bilinear_samples(A: np.ndarray, B: np.ndarray, k: int) -> np.ndarray:
@@ -59,14 +68,22 @@ def patch_mesh(P: np.ndarray, Q: np.ndarray, k: int = PATCH_SUBDIVISIONS):
     return V, F
 
 
-def deviation(A: np.ndarray, B: np.ndarray, P: np.ndarray, Q: np.ndarray) -> float:
-    """Largest distance of the planar strip ``A, B (m, 3)`` (sampled ``QUAD_SAMPLES²`` per quad)
-    from the original strip ``P, Q (m, 3)`` (bilinear quads, finely triangulated)."""
+def quad_deviation(A: np.ndarray, B: np.ndarray, P: np.ndarray, Q: np.ndarray) -> np.ndarray:
+    """Per quad of the planar strip ``A, B (r, 3)`` ``(r − 1,)``: the largest distance of its
+    points (``QUAD_SAMPLES²`` per quad, bilinear) from the original strip ``P, Q (m, 3)``
+    (bilinear quads, finely triangulated), in their unit."""
     V, F = patch_mesh(P, Q)
     surface = ReferenceSurface(V, F)
     pts = bilinear_samples(A, B, QUAD_SAMPLES)
     closest, _ = surface.closest(pts)
-    return float(np.max(np.linalg.norm(pts - closest, axis=1)))
+    dist = np.linalg.norm(pts - closest, axis=1)
+    return dist.reshape(A.shape[0] - 1, -1).max(axis=1)
+
+
+def deviation(A: np.ndarray, B: np.ndarray, P: np.ndarray, Q: np.ndarray) -> float:
+    """Largest distance of the planar strip ``A, B (m, 3)`` (sampled ``QUAD_SAMPLES²`` per quad)
+    from the original strip ``P, Q (m, 3)`` (bilinear quads, finely triangulated)."""
+    return float(np.max(quad_deviation(A, B, P, Q)))
 
 
 def strip_width(P: np.ndarray, Q: np.ndarray) -> float:

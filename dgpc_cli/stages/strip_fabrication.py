@@ -1,0 +1,152 @@
+"""Fabrication metrics of a strips artifact (SPEC §6 planarize-strips, §7; paper §6.2.4): end
+gaps, deviation from the net, seams, ruling turns, side ratios, planarity and areas of its
+strips (``strips.fabrication``), in mm, degrees and m², for ``planarize-strips`` to record and
+``dgpc inspect`` to recompute from the artifact's geometry and its net."""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.units import mm_per_unit
+from dgpc_cli.strips.fabrication import measure_strips, part_end_gaps, summary
+
+log = logging.getLogger(__name__)
+
+#: Warn when a strip ends farther than this (mm) from the net's edge row (issue "Strips that
+#: build the design": end gaps ≤ 1 mm) ...
+END_GAP_WARN = 1.0
+#: ... or when the strips' area differs from the net's (or the outline's) by more than this
+#: share (the parts add up to the design's area within 0.1 %).
+AREA_WARN = 1e-3
+
+
+def fabrication_warnings(fab: dict) -> list[str]:
+    """One line per way the strips of ``metrics.fabrication`` fail to build the design: end
+    gaps above :data:`END_GAP_WARN`, an area off by more than :data:`AREA_WARN`."""
+    out = []
+    gap, ratio = fab["max_end_gap"], fab["area_ratio"]
+    if gap is not None and gap == gap and gap > END_GAP_WARN:
+        worst = max(fab["per_strip"], key=lambda i: max(abs(g) for g in
+                                                        fab["per_strip"][i]["end_gaps"]
+                                                        if g is not None))
+        out.append(f"strips end up to {gap:.4g} mm from the net's edge rows ({worst}): built "
+                   "as cut, the design has gaps along its edges")
+    if ratio is not None and abs(ratio - 1.0) > AREA_WARN:
+        out.append(f"the strips' area is {100 * ratio:.2f} % of the {fab['area_reference']}'s "
+                   f"({fab['area']:.4g} of {fab['reference_area']:.4g} m²)")
+    return out
+
+
+def fabrication_metrics(f: np.ndarray, units: str, records: list[dict], geometry: list,
+                        reference=None) -> dict:
+    """``metrics.fabrication`` of the strips ``geometry[i] = (A, B)`` with the JSON
+    ``records[i]`` (``id``, ``v``, and ``trim`` for a trimmed strip) on the net ``f (m, n, 3)``,
+    all in ``units``; ``reference`` (a ``core.reference.ReferenceSurface`` in ``units``) the
+    outline the trimmed strips were clipped to (their end gaps are measured to it, their
+    areas against its area)."""
+    from dgpc_cli.strips.develop import develop_strip, signed_area
+    from dgpc_cli.strips.trim import strip_points
+
+    ids = [r["id"] for r in records]
+    measures = measure_strips(f, [(r["v"], A, B) for r, (A, B) in
+                                  zip(records, geometry, strict=True)])
+    part_gaps, part_areas, outline_area = {}, {}, None
+    trimmed = [(r, A, B) for r, (A, B) in zip(records, geometry, strict=True) if "trim" in r]
+    if trimmed and reference is not None:
+        for r, A, B in trimmed:
+            rings = [np.asarray(p["outline"], float) for p in r["trim"]["parts"]]
+            dev = develop_strip(A, B)
+            part_gaps[r["id"]] = [part_end_gaps(A, B, ring, reference) for ring in rings]
+            part_areas[r["id"]] = [abs(signed_area(strip_points(dev.A, dev.B, ring)))
+                                   for ring in rings]
+        tri = reference.vertices[reference.faces]
+        outline_area = float(0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0],
+                                                           tri[:, 2] - tri[:, 0]), axis=-1).sum())
+    return summary(ids, measures, mm_per_unit=mm_per_unit(units), part_gaps=part_gaps,
+                   part_areas=part_areas, outline_area=outline_area)
+
+
+def recorded_net(art, json_path: Path):
+    """``(net, path)``: the net a strips artifact ``art`` (read from ``json_path``) records as
+    ``inputs.net``, if it is there unchanged and matches the strips (units, grid); else None,
+    with a warning."""
+    from dgpc_cli.io.artifact import recorded_file
+    from dgpc_cli.io.net import read_net
+
+    try:
+        net_path = recorded_file(art.inputs.get("net"), json_path, "inputs.net")
+    except DgpcError as err:
+        log.warning("%s; no fabrication metrics from the geometry", err)
+        return None
+    net = read_net(net_path)
+    if net.units != art.units or net.shape != tuple(art.source_shape):
+        log.warning("%s: its net %s differs (units or grid); no fabrication metrics from the "
+                    "geometry", json_path, net_path)
+        return None
+    return net, net_path
+
+
+def inspect_strips(json_path: Path) -> dict:
+    """The metrics of the strips artifact ``json_path``, with ``fabrication`` recomputed from
+    its geometry and the net it records (the recorded one when that net is not there or
+    changed, with a warning)."""
+    from dgpc_cli.core.reference import ReferenceSurface
+    from dgpc_cli.io.strips import read_strips
+    from dgpc_cli.stages.inspect import recorded_reference
+
+    art = read_strips(json_path)
+    metrics = dict(art.metrics)
+    found = recorded_net(art, json_path)
+    if found is None:
+        return metrics
+    net, net_path = found
+    reference = None
+    if any("trim" in r for r in art.records):
+        mesh = recorded_reference(net, net_path)
+        reference = ReferenceSurface.from_mesh(mesh) if mesh is not None else None
+    metrics["fabrication"] = fabrication_metrics(net.f, art.units, art.records, art.geometry,
+                                                 reference)
+    return metrics
+
+
+@dataclass
+class FigureData:
+    """What the figures after paper Fig. 18 draw (``report.strips``): the developed strips
+    ``(id, A, B)`` in mm aligned on the first (the template) and the largest outline
+    distance from it ``template_error`` (mm); per strip the deviation per quad (mm); the
+    seams ``(X, step)``: each shared geodesic (strip v's B, in the artifact's unit) with the
+    step at its vertices (mm); the mean strip width (mm)."""
+
+    developed: list
+    template_error: float
+    deviation: list
+    seams: list
+    width: float
+
+
+def figure_data(art, f: np.ndarray) -> FigureData:
+    """:class:`FigureData` of the strips artifact ``art`` on its net ``f`` (both in
+    ``art.units``)."""
+    from dgpc_cli.io.units import to_mm
+    from dgpc_cli.strips.congruence import align
+    from dgpc_cli.strips.develop import develop_strip
+
+    k = mm_per_unit(art.units)
+    measures = measure_strips(f, [(r["v"], A, B) for r, (A, B) in
+                                  zip(art.records, art.geometry, strict=True)])
+    devs = [develop_strip(to_mm(A, art.units), to_mm(B, art.units)) for A, B in art.geometry]
+    developed, error = [], 0.0
+    for r, dev in zip(art.records, devs, strict=True):
+        al = align(dev.A, dev.B, devs[0].A, devs[0].B)
+        developed.append((r["id"], al.apply(dev.A), al.apply(dev.B)))
+        error = max(error, al.error)
+    seams = [(np.asarray(B, float), s.seams[s.v + 1][0] * k)
+             for s, (_, B) in zip(measures, art.geometry, strict=True) if s.v + 1 in s.seams]
+    return FigureData(developed=developed, template_error=error,
+                      deviation=[s.deviation * k for s in measures], seams=seams,
+                      width=float(np.mean([s.width for s in measures])) * k)
