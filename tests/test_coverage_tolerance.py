@@ -19,8 +19,8 @@ def _cap(k: int = 81):
     X, Y = np.meshgrid(x, x, indexing="ij")
     V = np.stack([X, Y, A * (X**2 + Y**2)], -1).reshape(-1, 3)
     i = np.arange(k - 1)
-    I, J = np.meshgrid(i, i, indexing="ij")
-    a = (I * k + J).ravel()
+    iu, iv = np.meshgrid(i, i, indexing="ij")
+    a = (iu * k + iv).ravel()
     F = np.concatenate([np.stack([a, a + k, a + k + 1], 1), np.stack([a, a + k + 1, a + 1], 1)])
     return V, F
 
@@ -75,3 +75,29 @@ def test_inspect_and_optimize_take_the_tolerance_with_a_unit(tmp_path):
     default = metrics(tmp_path / "fit")["coverage"]
     assert default["tolerance_relative"] == pytest.approx(TOLERANCE_OF_DIAGONAL)
     dgpc("inspect", tmp_path / "fit", "--coverage-tol", "-1mm", expect=2)
+
+
+def _sphere_patch(k: int, r: float = 10.0):
+    """Points of a sphere of radius r on a k×k grid of longitude × latitude (±40°)."""
+    t = np.radians(np.linspace(-40.0, 40.0, k))
+    L, B = np.meshgrid(t, t, indexing="ij")
+    return r * np.stack([np.cos(B) * np.cos(L), np.cos(B) * np.sin(L), np.sin(B)], -1)
+
+
+def test_a_coarse_net_on_its_reference_covers_it_up_to_its_chord_height():
+    """A 7×7 net with its vertices on a sphere lies inside it by its facets' chord height (about
+    e²/8R = 0.09 here, 3 % of an edge; the tolerance is 0.2 % of the diagonal, 0.026): it covers
+    the patch. Lifted off the sphere by twice its chord height plus the tolerance, it does not."""
+    from dgpc_cli.metrics.coverage import chord_height
+    from dgpc_cli.metrics.hausdorff import net_triangles
+
+    fine = _sphere_patch(81)
+    V, F = net_triangles(fine)
+    net = _sphere_patch(7)
+    height = chord_height(net)
+    e = np.linalg.norm(net[1:] - net[:-1], axis=-1).mean()
+    assert height.shape == (6, 6)
+    assert e**2 / 80.0 < height.max() < e**2 / 10.0        # the order of e² / 8R, R = 10
+    assert coverage(net, V, F)["area_fraction"] == pytest.approx(1.0, abs=2e-3)
+    lifted = net * (1.0 + (2.0 * height.max() + 0.03) / 10.0)
+    assert coverage(lifted, V, F)["area_fraction"] < 0.05

@@ -5,9 +5,12 @@ The reference is sampled evenly: every triangle is cut into ``k²`` congruent su
 (regular subdivision), each sample the centroid of one, weighted by its area. A sample counts
 as covered when its closest point on the triangulated net (libigl AABB, one vectorized query)
 is not on the net's boundary — a point beyond the net's edge projects onto that edge — and it
-is no farther from the net than a geometric tolerance: a length the user can set, by default
-:data:`TOLERANCE_OF_DIAGONAL` of the reference's bounding-box diagonal. (A bound of one mean
-net edge, as before, counted reference area metres away from a coarse net as covered.)
+is no farther from the net than a geometric tolerance, a length the user can set (by default
+:data:`TOLERANCE_OF_DIAGONAL` of the reference's bounding-box diagonal), beyond the chord height
+of the net's own quad there: a net of straight edges on a curved reference lies inside it by up to
+``(|δ_uu f| + 2|δ_uv f| + |δ_vv f|) / 8`` (the interpolation error of its facets, from the net's
+second differences, :func:`chord_height`). (A bound of one mean net edge, as before, counted
+reference area metres away from a coarse net as covered.)
 """
 
 from __future__ import annotations
@@ -19,7 +22,8 @@ import numpy as np
 from dgpc_cli.metrics.frames import as_grid
 from dgpc_cli.metrics.hausdorff import net_triangles
 
-__all__ = ["coverage", "covered_faces", "default_tolerance", "subdivision_samples"]
+__all__ = ["chord_height", "coverage", "covered_faces", "default_tolerance",
+           "subdivision_samples"]
 
 #: Samples aimed at on the reference.
 DEFAULT_SAMPLES = 60_000
@@ -67,6 +71,30 @@ def default_tolerance(ref_vertices) -> float:
     return TOLERANCE_OF_DIAGONAL * float(np.linalg.norm(np.ptp(rv, axis=0)))
 
 
+def chord_height(f) -> np.ndarray:
+    """How far ``(m−1, n−1)`` each quad of the net ``f (m, n, 3)`` may lie from the smooth
+    surface through its vertices: ``(|δ_uu f| + 2 |δ_uv f| + |δ_vv f|) / 8``, the bound of the
+    linear interpolation error over a quad and its triangles, with the second differences of
+    the net along u and v (largest at the quad's corners; rows and columns next to the boundary
+    take their neighbour's) and the quad's mixed difference ``f(u+1,v+1) − f(u+1,v) − f(u,v+1)
+    + f(u,v)``."""
+    f = np.asarray(f, dtype=float)
+    m, n, _ = f.shape
+    duu = np.zeros((m, n))
+    dvv = np.zeros((m, n))
+    if m > 2:
+        duu[1:-1] = np.linalg.norm(f[2:] - 2.0 * f[1:-1] + f[:-2], axis=-1)
+        duu[0], duu[-1] = duu[1], duu[-2]
+    if n > 2:
+        dvv[:, 1:-1] = np.linalg.norm(f[:, 2:] - 2.0 * f[:, 1:-1] + f[:, :-2], axis=-1)
+        dvv[:, 0], dvv[:, -1] = dvv[:, 1], dvv[:, -2]
+    corner = duu + dvv
+    corners = np.maximum.reduce([corner[:-1, :-1], corner[1:, :-1], corner[1:, 1:],
+                                 corner[:-1, 1:]])
+    duv = np.linalg.norm(f[1:, 1:] - f[1:, :-1] - f[:-1, 1:] + f[:-1, :-1], axis=-1)
+    return (corners + 2.0 * duv) / 8.0
+
+
 def _covered_samples(f: np.ndarray, rv: np.ndarray, rf: np.ndarray, samples: int,
                      tolerance: float):
     """The samples of :func:`subdivision_samples` on the reference and whether the net ``f``
@@ -86,7 +114,8 @@ def _covered_samples(f: np.ndarray, rv: np.ndarray, rf: np.ndarray, samples: int
                                        np.ascontiguousarray(tri[:, 1]),
                                        np.ascontiguousarray(tri[:, 2]))
     on_boundary = ((bary < ON_EDGE) & _boundary_edge_mask(m, n)[fid]).any(axis=1)
-    return ~on_boundary & (np.sqrt(d2) <= tolerance), weight, nv, nf
+    reach = tolerance + chord_height(f).ravel()[fid % ((m - 1) * (n - 1))]
+    return ~on_boundary & (np.sqrt(d2) <= reach), weight, nv, nf
 
 
 def coverage(f, ref_vertices, ref_faces, *, samples: int = DEFAULT_SAMPLES,
