@@ -126,3 +126,36 @@ def test_r_is_the_norm_of_the_hard_terms(felt):
     assert m["R"] <= 1e-8 <= m["residuals"]["approximation"]         # soft ones listed apart
     assert net.status["state"] == "converged"
     assert net.status["iterations"] <= net.parameters["max_iter"]
+
+
+def _flat_grid(m: int, n: int, squeeze_col: int | None = None, to: float = 1.0):
+    """A flat m×n grid of unit spacing; the v-edges of column ``squeeze_col`` shortened to
+    ``to`` (all later columns shifted with them)."""
+    widths = np.ones(n - 1)
+    if squeeze_col is not None:
+        widths[squeeze_col] = to
+    v = np.concatenate([[0.0], np.cumsum(widths)])
+    u = np.arange(m, dtype=float)
+    U, V = np.meshgrid(u, v, indexing="ij")
+    return np.stack([U, V, np.zeros_like(U)], axis=-1)
+
+
+@pytest.mark.parametrize("mode", ["fit", "developable", "revolution", "isometric"])
+def test_a_net_inspect_calls_folded_is_never_converged(mode):
+    """An edge of 5 % of the mean (above the collapse floor of 1e-3, below inspect's folded
+    bound of 10 %) makes the state degenerate, naming the rows and columns."""
+    from dgpc_cli.metrics.residuals import edge_length_stats
+    from dgpc_cli.stages.optimize import OptimizeOutcome, judge
+
+    f = _flat_grid(7, 6, squeeze_col=3, to=0.05)
+    assert edge_length_stats(f)["folded"]                 # what inspect reports
+    outcome = OptimizeOutcome(f=f, status="converged", message="converged", steps=[],
+                              residuals={}, R=0.0)
+    state, message = judge(outcome, f, mode=mode)
+    assert state == "degenerate"
+    assert "rows 0-6" in message and "columns 3-4" in message
+    # the same grid without the squeeze is not refused for its edges
+    f = _flat_grid(7, 6)
+    state, _ = judge(OptimizeOutcome(f=f, status="converged", message="converged", steps=[],
+                                     residuals={}, R=0.0), f, mode="fit")
+    assert state == "converged"

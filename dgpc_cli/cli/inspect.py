@@ -6,6 +6,7 @@ from pathlib import Path
 
 import click
 
+from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import KINDS, artifact_paths, dumps_json
 from dgpc_cli.io.journal import finish_interrupted
@@ -24,10 +25,10 @@ def _axis(ctx, param, value):
         raise click.BadParameter(str(err), ctx=ctx, param=param) from None
 
 
-def _inspect_net(json_path: Path, axis=None, against=None) -> dict:
+def _inspect_net(json_path: Path, axis=None, against=None, coverage_tol=None) -> dict:
     net = read_net(json_path)
     reference = read_net(against) if against is not None else None
-    return inspect_net(net, json_path, axis=axis, against=reference)
+    return inspect_net(net, json_path, axis=axis, against=reference, coverage_tol=coverage_tol)
 
 
 #: One inspector per artifact kind: ``inspector(json_path, axis=..., against=...) -> dict``.
@@ -98,7 +99,11 @@ def artifact_kind(json_path: Path) -> str:
                    "records, if any).")
 @click.option("--against", type=click.Path(path_type=Path), metavar="STEM0",
               help="Reference net for the strain (same grid).")
-def inspect(stem, axis, against):
+@click.option("--coverage-tol", type=LengthParam(min=0, min_open=True), default=None,
+              help=length_help("Net: a point of the reference counts as covered when the net "
+                               "passes within this distance of it [default: 0.2 % of the "
+                               "reference's bounding-box diagonal]."))
+def inspect(stem, axis, against, coverage_tol):
     """Print the metrics of the artifact STEM (SPEC §7) as JSON on stdout.
 
     For a net: R (the paper's constraint error at mean edge length 1), geometric residuals,
@@ -109,5 +114,9 @@ def inspect(stem, axis, against):
     kind = artifact_kind(json_path)
     if kind not in INSPECTORS:
         raise DgpcError(f"inspecting '{kind}' artifacts is not supported yet", source=json_path)
-    metrics = INSPECTORS[kind](json_path, axis=axis, against=against)
+    if coverage_tol is not None and kind != "net":
+        raise click.BadParameter(f"applies to net artifacts only; {json_path} is a {kind}",
+                                 param_hint="'--coverage-tol'")
+    metrics = INSPECTORS[kind](json_path, axis=axis, against=against,
+                               **({} if coverage_tol is None else {"coverage_tol": coverage_tol}))
     click.echo(dumps_json(metrics).decode(), nl=False)

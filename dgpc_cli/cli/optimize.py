@@ -8,6 +8,7 @@ from pathlib import Path
 import click
 
 from dgpc_cli.cli.finite_float import FiniteFloat
+from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
 from dgpc_cli.cli.progress import SolverProgress
 from dgpc_cli.core.reference import ReferenceSurface
@@ -95,6 +96,10 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
 @click.option("--gpc-tol", type=FiniteFloat(min=0, min_open=True), default=TOL.gpc_tol,
               show_default=True,
               help="isometric: largest angle defect of (6), radians, that counts as converged.")
+@click.option("--coverage-tol", type=LengthParam(min=0, min_open=True), default=None,
+              help=length_help("With a reference: a point of it counts as covered when the "
+                               "net passes within this distance (metrics.coverage) [default: "
+                               "0.2 % of the reference's bounding-box diagonal]."))
 @click.option("--solver", "backend", type=click.Choice(["auto", *BACKENDS]), default="auto",
               show_default=True, help="Sparse linear solver of the normal equations.")
 @output_opt
@@ -102,7 +107,7 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
 @format_opt
 @click.pass_context
 def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, max_iter, tol,
-             max_strain, gpc_tol, backend, output, force, fmt):
+             max_strain, gpc_tol, coverage_tol, backend, output, force, fmt):
     """Optimize the net STEM with guided projection (paper §5) and write it to -o STEM2.
 
     Exit code 3 if the last step does not reach --tol, if the net is pleated, in revolution
@@ -169,6 +174,7 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
                     "soft": [*SOFT[mode], *outcome.released], "steps": steps,
                     "max_iter": outcome.max_iter, "tol": tol, "max_strain": max_strain,
                     "gpc_tol": gpc_tol, "solver": backend,
+                    "coverage_tol": None if coverage_tol is None else coverage_tol.text(),
                     **net.reference_parameters()},
         inputs=inputs, data=data)
     outcome.status, outcome.message = judge(outcome, net.f_mm, mode=mode,
@@ -176,7 +182,9 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
     result.status = outcome.record()
     result.metrics = summarize(result, mesh=mesh,
                                against=net if mode == "isometric" else None,
-                               surface=surface.scaled(1.0 / mm) if surface is not None else None)
+                               surface=surface.scaled(1.0 / mm) if surface is not None else None,
+                               coverage_tol=(None if coverage_tol is None
+                                             else coverage_tol.in_units(net.units, net.units)))
     write_files(with_3dm(net_files(output, result), output, fmt), force=force)
     click.echo(str(out_json))
     log.info("%s: %s, %d iterations, R = %.3g", out_json, outcome.status, outcome.iterations,

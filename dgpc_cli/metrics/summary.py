@@ -54,7 +54,8 @@ def _stats(x: np.ndarray) -> dict:
     return {"min": float(x.min()), "max": float(x.max()), "mean": float(x.mean())}
 
 
-def net_metrics(f, *, axis=None, against=None, reference=None, surface=None) -> dict:
+def net_metrics(f, *, axis=None, against=None, reference=None, surface=None,
+                coverage_tol: float | None = None) -> dict:
     """Metrics of a net ``f (m, n, 3)`` from its vertex positions (SPEC §7).
 
     Always::
@@ -74,7 +75,8 @@ def net_metrics(f, *, axis=None, against=None, reference=None, surface=None) -> 
     ``(vertices (k, 3), faces (l, 3))`` (see :func:`~dgpc_cli.metrics.hausdorff.hausdorff`) and
     ``coverage`` of it (area fraction, vertex distances; see
     :func:`~dgpc_cli.metrics.coverage.coverage`; ``surface``, the reference's
-    :class:`~dgpc_cli.core.reference.ReferenceSurface` if one is built, lends it its tree).
+    :class:`~dgpc_cli.core.reference.ReferenceSurface` if one is built, lends it its tree;
+    ``coverage_tol`` its tolerance, in the net's unit, None for the default).
     Values are plain floats/ints/lists; undefined values are None, never NaN.
     """
     f = as_grid(f)
@@ -103,5 +105,5 @@ def net_metrics(f, *, axis=None, against=None, reference=None, surface=None) -> 
         except (TypeError, ValueError):
             raise ValueError("reference must be a (vertices, faces) pair") from None
         out["hausdorff"] = hausdorff(f, vertices, faces)
-        out["coverage"] = coverage(f, vertices, faces, surface=surface)
+        out["coverage"] = coverage(f, vertices, faces, surface=surface, tolerance=coverage_tol)
     return jsonable(out)

@@ -104,15 +104,18 @@ def constraint_residuals(net: NetArtifact, reference=None, against: NetArtifact 
 
 
 def summarize(net: NetArtifact, *, axis=None, mesh=None,
-              against: NetArtifact | None = None, surface=None) -> dict:
+              against: NetArtifact | None = None, surface=None,
+              coverage_tol: float | None = None) -> dict:
     """All metrics of a net (SPEC §7) as a JSON-able dict; ``mesh`` a ReferenceMesh or None,
     ``surface`` the ReferenceSurface the net was fitted to (``fit_surface`` of ``mesh``, in the
     net's units) when one is built: its tree serves the residuals and, for a net not extended
-    past ``mesh``, the coverage."""
+    past ``mesh``, the coverage; ``coverage_tol`` the coverage's tolerance in the net's unit
+    (None: its default, 0.2 % of the reference's diagonal)."""
     axis = axis if axis is not None else recorded_axis(net)
     metrics = net_metrics(net.f, axis=axis, against=against.f if against is not None else None,
                           reference=(mesh.vertices, mesh.faces) if mesh is not None else None,
-                          surface=surface if mesh is not None and net.extend <= 0 else None)
+                          surface=surface if mesh is not None and net.extend <= 0 else None,
+                          coverage_tol=coverage_tol)
     norms, R = constraint_residuals(net, mesh, against, surface)
     metrics["R"] = R
     metrics["residuals"] = norms
@@ -128,9 +131,13 @@ def summarize(net: NetArtifact, *, axis=None, mesh=None,
 
 
 def inspect_net(net: NetArtifact, json_path: Path, *, axis=None,
-                against: NetArtifact | None = None) -> dict:
-    """Metrics of a net artifact read from ``json_path``, with its recorded reference."""
+                against: NetArtifact | None = None, coverage_tol=None) -> dict:
+    """Metrics of a net artifact read from ``json_path``, with its recorded reference;
+    ``coverage_tol`` a :class:`~dgpc_cli.cli.length.Length`-like object with ``in_units`` or
+    None (the coverage's default tolerance)."""
     if against is not None and against.shape != net.shape:
         raise DgpcError(f"--against: grid {against.shape[0]}×{against.shape[1]} differs from "
                         f"{net.shape[0]}×{net.shape[1]}", source="--against")
-    return summarize(net, axis=axis, mesh=recorded_reference(net, json_path), against=against)
+    tol = None if coverage_tol is None else coverage_tol.in_units(net.units, net.units)
+    return summarize(net, axis=axis, mesh=recorded_reference(net, json_path), against=against,
+                     coverage_tol=tol)

@@ -434,14 +434,18 @@ def judge(outcome: OptimizeOutcome, f_input: np.ndarray, *, mode: str,
           max_strain: float = TOL.max_strain, gpc_tol: float = TOL.gpc_tol) -> tuple[str, str]:
     """The state and message of an optimized net (SPEC §4): never ``converged`` on a folded,
     collapsed or pleated net (state ``degenerate``, naming the rows and columns, see
-    :func:`~dgpc_cli.metrics.degenerate.degeneracies`; or ``pleated``). In revolution mode
+    :func:`~dgpc_cli.metrics.degenerate.degeneracies`, with an edge shorter than
+    ``TOL.min_edge_ratio`` of the mean, the bound of ``inspect``'s ``edges.folded``; or
+    ``pleated``). In revolution mode
     ``converged`` only when every quad is within ``max_strain`` of the surface of revolution
     extract-mold builds from the net (edges and diagonals); in isometric mode only when the
     largest strain against the input (§6.1) is at most ``max_strain`` and the gpc angle defect
     at most ``gpc_tol`` (radians).
     """
     f = outcome.f
-    found = degeneracies(f)
+    # The edge floor is the one of `inspect`'s edges.folded (10 % of the mean edge): a net that
+    # inspect calls folded is never converged.
+    found = degeneracies(f, edge_ratio=TOL.min_edge_ratio)
     if found:
         return "degenerate", f"folded or collapsed net: {found.message()}"
     corrugation = pleat(f)

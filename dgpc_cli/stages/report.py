@@ -127,9 +127,12 @@ def _reference(net, json_path: Path):
     mesh = recorded_reference(net, json_path)
     if mesh is None:
         return None
-    recorded = (net.metrics.get("coverage") or {}).get("area_fraction")
-    return Reference(mesh.vertices, mesh.faces, covered_faces(net.f, mesh.vertices, mesh.faces),
-                     recorded)
+    record = net.metrics.get("coverage") or {}
+    # the faces covered to the tolerance the recorded figure was measured with
+    return Reference(mesh.vertices, mesh.faces,
+                     covered_faces(net.f, mesh.vertices, mesh.faces,
+                                   tolerance=record.get("tolerance")),
+                     record.get("area_fraction"))
 
 
 def _recorded_clairaut(metrics: dict) -> dict | None:
