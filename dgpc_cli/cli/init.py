@@ -9,6 +9,7 @@ from pathlib import Path
 import click
 
 from dgpc_cli.cli.finite_float import FiniteFloat
+from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import (
     check_writable,
     force_opt,
@@ -16,22 +17,23 @@ from dgpc_cli.cli.options import (
     output_opt,
     show_progress,
 )
-from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import net_files
 from dgpc_cli.io.rhino import with_3dm
-from dgpc_cli.io.units import DEFAULT_UNITS, UNIT_MM
+from dgpc_cli.io.units import DEFAULT_UNITS, UNIT_MM, UNIT_NAMES
 from dgpc_cli.stages.init import init_revolution
 from dgpc_cli.stages.inspect import summarize
 from dgpc_cli.stages.net_size import check_net_size
 from dgpc_cli.surfaces.profiles import describe_builtins
+from dgpc_cli.surfaces.revolution import MAX_TWIST
 
 log = logging.getLogger(__name__)
 
 
 def parse_direction(text: str | None):
-    """``"x,y,z"`` → three floats, not all zero; DgpcError naming --direction otherwise."""
+    """``"x,y,z"`` → three floats, not all zero; a usage error (exit 2) naming --direction
+    otherwise."""
     if text is None:
         return None
     try:
@@ -39,9 +41,21 @@ def parse_direction(text: str | None):
     except ValueError:
         d = []
     if len(d) != 3 or not all(abs(x) < float("inf") for x in d) or not any(d):
-        raise DgpcError(f"{text!r} is not a direction: give three numbers x,y,z, not all zero",
-                        source="--direction")
+        raise click.BadParameter(f"{text!r} is not a direction: give three numbers x,y,z, "
+                                 "not all zero", param_hint="'--direction'")
     return d
+
+
+def assumed_units_line(f, units: str) -> str:
+    """The stderr line of ``init`` without ``--units``: the unit assumed and the net's size in
+    it (its bounding box), so that a profile or mesh drawn in metres is caught at once."""
+    import numpy as np
+
+    size = np.ptp(np.asarray(f, dtype=float).reshape(-1, 3), axis=0)
+    dims = " × ".join(f"{x:.3g}" for x in size)
+    other = "m" if units != "m" else "mm"
+    return (f"init: no --units given: the net is in {units}, {dims} {units} (x × y × z); "
+            f"a model drawn in {UNIT_NAMES.get(other, other)} needs --units {other}")
 
 
 def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacing,
@@ -102,7 +116,7 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
 @click.option("--direction", metavar="x,y,z",
               help="Direction for --method: normal of the base plane (geodesic) or of the "
                    "projection (project).")
-@click.option("--angle", type=FiniteFloat(), metavar="DEG",
+@click.option("--angle", type=FiniteFloat(min=-360, max=360), metavar="DEG",
               help="In-plane angle, degrees: geodesic: the base plane's normal turned about "
                    "the mesh's normal axis; project: the grid turned about the direction.")
 @click.option("--from-quads", "from_quads", type=click.Path(path_type=Path),
@@ -113,32 +127,39 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
 @click.option("--largest-component", is_flag=True,
               help="Keep the largest connected piece of REFERENCE instead of rejecting a mesh "
                    "of several pieces.")
-@click.option("--extend", type=FiniteFloat(min=0), default=0.0, show_default=True,
+@click.option("--extend", type=FiniteFloat(min=0, max=1), default=0.0, show_default=True,
               metavar="FRACTION",
               help="With --method: let the net run beyond the mesh's outer boundary by up to "
-                   "FRACTION of its bounding-box diagonal (paper Fig. 14): the net is traced "
+                   "FRACTION of its bounding-box diagonal (a ratio, no unit; paper Fig. 14): "
+                   "the net is traced "
                    "on the mesh continued in its boundary's tangent planes, and `optimize` "
                    "fits it to that continuation (reaching twice as far, so the net's rim "
                    "meets no boundary); the net records the mesh itself.")
 @click.option("--rows", "rows", type=click.IntRange(min=3),
-              help="m: vertices along the geodesics (default with a mesh: square quads).")
+              help="m: vertices along the geodesics (required with --surface; default with a "
+                   "mesh: square quads).")
 @click.option("--cols", "cols", type=click.IntRange(min=3),
-              help="n: vertices across the geodesics (default with a mesh: 21).")
-@click.option("--spacing", type=FiniteFloat(min=0, min_open=True),
-              help="With a mesh, instead of --cols: vertex spacing in model units (also along "
-                   "the geodesics unless --rows is given).")
-@click.option("--span", "span", type=FiniteFloat(), default=180.0, show_default=True,
+              help="n: vertices across the geodesics (required with --surface; default with a "
+                   "mesh: 21).")
+@click.option("--spacing", type=LengthParam(min=0, min_open=True), metavar="LENGTH",
+              help=length_help("With a mesh, instead of --cols: the vertex spacing (also along "
+                               "the geodesics unless --rows is given), > 0.",
+                               where="in the model's unit (--units)"))
+@click.option("--span", "span", type=FiniteFloat(min=0, min_open=True, max=360), default=180.0,
+              show_default=True,
               help="--surface: angle covered by the v-lines, degrees (360: a full ring).")
-@click.option("--twist", type=FiniteFloat(), default=0.0, show_default=True,
+@click.option("--twist", type=FiniteFloat(min=-MAX_TWIST, max=MAX_TWIST), default=0.0,
+              show_default=True,
               help="--surface: shear T, radians: the angle of f(u, v) gets T·s(u)/s_total "
                    "added, so the initial u-lines are not meridians (paper Fig. 11).")
 @click.option("--reference-out", type=click.Path(dir_okay=False, path_type=Path),
               help="--surface: also write the triangulated surface (OBJ), fine enough to be "
                    "the reference for `optimize --mode fit`.")
-@click.option("--units", type=click.Choice(list(UNIT_MM)), default=DEFAULT_UNITS,
-              show_default=True,
+@click.option("--units", type=click.Choice(list(UNIT_MM)), default=None,
               help="Length unit of the coordinates (of the profile, mesh or quad net, and of "
-                   "the net made): every later stage carries it on; DXF files are in mm.")
+                   "the net made): every later stage carries it on; DXF files are in mm. "
+                   f"[default: {DEFAULT_UNITS}, and stderr says so with the net's size: a "
+                   "built-in profile of radius 5 is then 5 mm]")
 @output_opt
 @force_opt
 @format_opt
@@ -186,6 +207,10 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     if (profile or reference_out) and not surface:
         raise click.UsageError("--profile and --reference-out go with --surface")
     d = parse_direction(direction)
+    given_units = units
+    units = units or DEFAULT_UNITS
+    if spacing is not None:
+        spacing = spacing.in_units(units, artifact_units=units)
     check_writable(output, force, *([reference_out] if reference_out else []))
     json_path, _ = artifact_paths(output)
     folder = json_path.resolve().parent
@@ -214,6 +239,8 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     net.units = units
     net.parameters["units"] = units
     net.metrics = summarize(net, mesh=mesh)
+    if given_units is None and show_progress(ctx):
+        click.echo(assumed_units_line(net.f, units), err=True)
     files.update(with_3dm(net_files(output, net), output, fmt))
     write_files(files, force=force)
     click.echo(str(json_path))
