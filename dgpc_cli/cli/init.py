@@ -90,12 +90,14 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
 
 
 @click.command(short_help="Make an initial net.",
-               epilog="Built-in profiles:\n\n\b\n" + describe_builtins())
+               epilog="Built-in profiles (their numbers in the unit of --units: a radius 5 "
+                      "is 5 mm by default, 5 m with --units m):\n\n\b\n" + describe_builtins())
 @click.argument("reference", required=False, type=click.Path(path_type=Path))
 @click.option("--surface", type=click.Choice(["revolution"]),
               help="Analytic surface: 'revolution' (profile revolved about the z axis).")
 @click.option("--profile", metavar="NAME|FILE",
-              help="With --surface: built-in profile name, or a CSV file with header 'r,h'.")
+              help="With --surface: built-in profile name (below), or a CSV file with header "
+                   "'r,h', its numbers in the unit of --units.")
 @click.option("--method", type=click.Choice(["geodesic", "project"]),
               help="With REFERENCE (a triangle mesh, OBJ/PLY/STL/OFF): 'geodesic' traces "
                    "geodesics orthogonally from a base curve (--base); 'project' projects a "
