@@ -151,7 +151,7 @@ def test_extract_mold_builds_the_designs_own_surface_by_default(wall):
     value = dgpc("extract-mold", wall / "wall", "--lambda", 2, "-o", wall / "two")
     assert _radii(wall / "two")[1]["data"]["lambda"] == 2.0 and "--lambda" in value.stderr
     r = dgpc("extract-mold", wall / "wall", "--lambda", "huge", "-o", wall / "x", expect=2)
-    assert "design, compact or a finite number" in r.stderr
+    assert "not a finite number > 0, nor design or compact" in r.stderr
 
 
 def test_lengths_take_units_and_are_recorded_in_the_artifacts_unit(wall):
@@ -182,3 +182,17 @@ def test_a_part_too_long_for_the_sheet_suggests_stock_length(wall):
     dgpc("unfold", wall / "strips", "-o", wall / "flat")
     r = dgpc("nest", wall / "flat", "--sheet", "2500x1250", "-o", wall / "sheets", expect=1)
     assert "does not fit" in r.stderr and "--stock-length" in r.stderr
+
+
+def test_init_edge_length_takes_a_unit_and_its_old_name_warns(tmp_path):
+    mesh = tmp_path / "m.obj"
+    mesh.write_text("v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n")
+    base = ["init", mesh, "--method", "project", "--direction", "0,0,1", "--units", "m"]
+    dgpc(*base, "--edge-length", "250mm", "-o", tmp_path / "a")
+    dv = np.linalg.norm(np.diff(read_net(tmp_path / "a").f, axis=1), axis=-1)
+    assert np.allclose(dv, 0.25, rtol=1e-9)
+    doc = json.loads((tmp_path / "a.json").read_text())
+    assert doc["parameters"]["spacing"] == 0.25                  # in the net's unit, m
+    r = dgpc(*base, "--spacing", 0.25, "-o", tmp_path / "b")
+    assert "--spacing is deprecated, it is now --edge-length" in r.stderr
+    assert (tmp_path / "a.obj").read_bytes() == (tmp_path / "b.obj").read_bytes()

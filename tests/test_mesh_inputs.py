@@ -111,7 +111,8 @@ def test_two_triangles(tmp_path):
 @pytest.mark.parametrize("args, words, code", [
     (["--method", "geodesic", "--direction", "0,0,0"], ["--direction", "not all zero"], 2),
     (["--method", "project", "--direction", "1,a,0"], ["--direction"], 2),
-    (["--method", "project", "--direction", "0,0,1", "--spacing", "100"], ["--spacing"], 1),
+    (["--method", "project", "--direction", "0,0,1", "--edge-length", "100"], ["--edge-length"],
+     1),
 ])
 def test_bad_options_exit_2_or_1(tmp_path, args, words, code):
     """A malformed option is a usage error (2); a spacing the mesh cannot take is bad data (1)."""
@@ -136,7 +137,7 @@ def test_usage_errors_exit_2(tmp_path):
          expect=2)                                                   # a base curve: geodesic
     dgpc("init", path, "--method", "geodesic", "--base", "b1", "--angle", 10, "-o",
          tmp_path / "out", expect=2)                                 # a boundary has no angle
-    dgpc("init", path, "--method", "geodesic", "--cols", 5, "--spacing", 1, "-o",
+    dgpc("init", path, "--method", "geodesic", "--cols", 5, "--edge-length", 1, "-o",
          tmp_path / "out", expect=2)
     dgpc("init", "--surface", "revolution", "--profile", "cone", "--rows", 5, "--cols", 5,
          "--method", "geodesic", "-o", tmp_path / "out", expect=2)

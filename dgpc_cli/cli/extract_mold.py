@@ -55,8 +55,8 @@ class LambdaParam(click.ParamType):
         try:
             return FiniteFloat(min=0, min_open=True).convert(value, param, ctx)
         except click.BadParameter:
-            self.fail(f"{value!r} is not {', '.join(LAMBDA_CHOICES)} or a finite number > 0.",
-                      param, ctx)
+            self.fail(f"{value!r} is not a finite number > 0, nor "
+                      f"{' or '.join(LAMBDA_CHOICES)}.", param, ctx)
 
 
 @click.command("extract-mold", short_help="Extract the mold (surface of revolution) of nets.")

@@ -14,6 +14,8 @@ from dgpc_cli.cli.options import (
     check_writable,
     force_opt,
     format_opt,
+    from_old_name,
+    old_name,
     output_opt,
     show_progress,
 )
@@ -143,10 +145,13 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
 @click.option("--cols", "cols", type=click.IntRange(min=3),
               help="n: vertices across the geodesics (required with --surface; default with a "
                    "mesh: 21).")
-@click.option("--spacing", type=LengthParam(min=0, min_open=True), metavar="LENGTH",
-              help=length_help("With a mesh, instead of --cols: the vertex spacing (also along "
-                               "the geodesics unless --rows is given), > 0.",
+@click.option("--edge-length", "spacing", type=LengthParam(min=0, min_open=True),
+              metavar="LENGTH", callback=from_old_name("--edge-length"),
+              help=length_help("With a mesh, instead of --cols: the vertex spacing, the length "
+                               "of the net's edges across the geodesics (also along them "
+                               "unless --rows is given), > 0.",
                                where="in the model's unit (--units)"))
+@old_name("--spacing", "--edge-length", type=LengthParam(min=0, min_open=True))
 @click.option("--span", "span", type=FiniteFloat(min=0, min_open=True, max=360), default=180.0,
               show_default=True,
               help="--surface: angle covered by the v-lines, degrees (360: a full ring).")
@@ -174,9 +179,9 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     \b
     dgpc init --surface revolution --profile NAME|FILE --rows M --cols N -o STEM
     dgpc init MESH --method geodesic [--base auto|section|boundary|bK] [--direction x,y,z]
-              [--angle DEG] [--rows M] [--cols N|--spacing S] [--extend F] -o STEM
+              [--angle DEG] [--rows M] [--cols N|--edge-length L] [--extend F] -o STEM
     dgpc init MESH --method project [--direction x,y,z] [--angle DEG] [--rows M]
-              [--cols N|--spacing S] [--extend F] -o STEM
+              [--cols N|--edge-length L] [--extend F] -o STEM
     dgpc init --from-quads NET.obj [MESH] -o STEM
 
     With --surface the z axis is the axis of revolution and a CSV profile is resampled by arc
@@ -190,14 +195,14 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
                                + (f" (got {', '.join(sources)})" if sources else ""))
     if surface:
         if reference is not None or spacing is not None or direction is not None:
-            raise click.UsageError("--surface takes no REFERENCE, --direction or --spacing")
+            raise click.UsageError("--surface takes no REFERENCE, --direction or --edge-length")
         if profile is None or rows is None or cols is None:
             raise click.UsageError("--surface needs --profile, --rows and --cols")
     elif method:
         if reference is None:
             raise click.UsageError("--method needs a REFERENCE mesh")
         if cols is not None and spacing is not None:
-            raise click.UsageError("give --cols or --spacing, not both")
+            raise click.UsageError("give --cols or --edge-length, not both")
         if method == "project" and base is not None:
             raise click.UsageError("--base goes with --method geodesic")
         if base not in (None, "auto", "section") and (direction is not None or angle is not None):
