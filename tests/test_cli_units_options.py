@@ -196,3 +196,23 @@ def test_init_edge_length_takes_a_unit_and_its_old_name_warns(tmp_path):
     r = dgpc(*base, "--spacing", 0.25, "-o", tmp_path / "b")
     assert "--spacing is deprecated, it is now --edge-length" in r.stderr
     assert (tmp_path / "a.obj").read_bytes() == (tmp_path / "b.obj").read_bytes()
+
+
+def test_design_lambda_is_the_turn_of_the_rows():
+    """λ = 360°/span for a net on a surface of revolution (twisted too: its rows are still
+    parallels); a Minding bending by λ of a full ring is measured as λ."""
+    from dgpc_cli.mold.profile import design_lambda, row_turning
+    from dgpc_cli.surfaces.minding import minding_bend
+    from dgpc_cli.surfaces.profiles import profile_from_spec
+    from dgpc_cli.surfaces.revolution import revolution_net
+
+    prof = profile_from_spec("catenoid")
+    f = revolution_net(prof, 9, 7, span_deg=75.0, twist=0.4)
+    assert np.allclose(np.degrees(row_turning(f)), 75.0, rtol=1e-12)
+    assert design_lambda([f])[0] == pytest.approx(360 / 75, rel=1e-9)
+    ring = revolution_net(prof, 9, 13, span_deg=360.0)
+    assert design_lambda([ring])[0] == 1.0                      # 10 digits: exactly one turn
+    assert design_lambda([minding_bend(ring, 0.7)])[0] == pytest.approx(0.7, rel=1e-9)
+    flat = np.stack([*np.meshgrid(np.arange(4.0), np.arange(5.0), indexing="ij"),
+                     np.zeros((4, 5))], axis=-1)
+    assert design_lambda([flat]) is None and design_lambda([flat[:, :2]]) is None
