@@ -17,8 +17,12 @@ $(GEHRY)/facade-%.json: $(GEHRY)/base.json samples/handles/gehry-%-$(GEHRY_M)x$(
 	$(DGPC) optimize $(basename $<) --mode isometric --handles $(word 2,$^) --steps 5 \
 	    $(DRAG_TOL) -o $(basename $@) --force
 
+# The compact mold (--lambda compact): the full-turn surface of revolution isometric to the
+# facades, about a quarter of their radius, turned on a lathe (the paper's "comparably small"
+# mold); the default, --lambda design, would be the 90° design surface itself.
 $(GEHRY)/mold.json: $(GEHRY_DEF)
-	$(DGPC) extract-mold $(basename $^) --panel-size 2 --max-strain $(MAX_STRAIN) -o $(basename $@) --force
+	$(DGPC) extract-mold $(basename $^) --lambda compact --panel-size 2 --max-strain $(MAX_STRAIN) \
+	    -o $(basename $@) --force
 
 $(GEHRY)/strips.json: $(GEHRY)/facade-1.json
 	$(DGPC) planarize-strips $(basename $<) -o $(basename $@) --force

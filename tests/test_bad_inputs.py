@@ -95,12 +95,12 @@ def test_every_float_option_is_a_finite_float():
 FLOAT_OPTIONS = [
     (["init", "--surface", "revolution", "--profile", "catenoid"], "--twist"),
     (["init", "--surface", "revolution", "--profile", "catenoid"], "--span"),
-    (["init", "--surface", "revolution", "--profile", "catenoid"], "--spacing"),
+    (["init", "--surface", "revolution", "--profile", "catenoid"], "--edge-length"),
     (["init", "--surface", "revolution", "--profile", "catenoid"], "--extend"),
     (["optimize", "{d}/cat", "--mode", "revolution"], "--tol"),
     (["optimize", "{d}/cat", "--mode", "isometric"], "--max-strain"),
     (["optimize", "{d}/cat", "--mode", "isometric"], "--gpc-tol"),
-    (["extract-mold", "{d}/cat"], "--tol"),
+    (["extract-mold", "{d}/cat"], "--revolution-tol"),
     (["extract-mold", "{d}/cat"], "--flat-tol"),
     (["extract-mold", "{d}/cat"], "--mold-max-length"),
     (["extract-mold", "{d}/cat"], "--lambda"),
@@ -122,7 +122,7 @@ FLOAT_OPTIONS = [
 def test_non_finite_option_is_a_usage_error(sample, tmp_path, args, option, value):
     args = [a.format(d=sample) for a in args]
     run_bad([sample, tmp_path], [*args, option, value, "-o", tmp_path / "out"], 2,
-            f"'{option}'", "not a finite number")
+            f"'{option}'", "not a finite")   # number, or length (a length option)
 
 
 @pytest.mark.parametrize("value, what", [(float("nan"), "NaN"), (1e999, "inf"),
@@ -445,8 +445,9 @@ FELT = Path(__file__).resolve().parents[1] / "samples" / "meshes" / "felt.obj"
      "--rows/--cols"),
     ([FELT, "--method", "geodesic", "--rows", 100000, "--cols", 100000], "--rows/--cols"),
     ([FELT, "--method", "geodesic", "--cols", 100000], "--rows/--cols"),
-    ([FELT, "--method", "geodesic", "--spacing", 1e-9], "--spacing"),
-    ([FELT, "--method", "project", "--direction", "0,0,1", "--spacing", 1e-300], "--spacing"),
+    ([FELT, "--method", "geodesic", "--edge-length", 1e-9], "--edge-length"),
+    ([FELT, "--method", "project", "--direction", "0,0,1", "--edge-length", 1e-300],
+     "--edge-length"),
     ([FELT, "--method", "project", "--direction", "0,0,1", "--rows", 3000, "--cols", 3000],
      "--rows/--cols"),
 ], ids=["revolution", "geodesic-rows-cols", "geodesic-cols", "geodesic-spacing",
@@ -539,7 +540,8 @@ def test_a_huge_nest_option(sample, tmp_path, args, option):
       "--twist", 1e308], "--twist"),
 ])
 def test_a_huge_init_option(tmp_path, args, option):
-    run_bad([tmp_path], ["init", *args, "-o", tmp_path / "out"], 1, option)
+    """Beyond the option's range (shown in its help): a usage error."""
+    run_bad([tmp_path], ["init", *args, "-o", tmp_path / "out"], 2, option, "range")
 
 
 def test_a_non_manifold_mesh(tmp_path):

@@ -113,7 +113,8 @@ def cli_chain(out: str) -> None:
     with ThreadPoolExecutor(2) as pool:
         list(pool.map(patch, range(1, 5)))
     os.makedirs(f"{out}/shared", exist_ok=True)
-    run("extract-mold", *(f"{out}/facade-{k}/net" for k in range(1, 5)), "--panel-size", "2",
+    run("extract-mold", *(f"{out}/facade-{k}/net" for k in range(1, 5)), "--lambda", "compact",
+        "--panel-size", "2",
         "--max-strain", "2e-3", "-o", f"{out}/shared/mold-gehry")
     run("nest", *(f"{out}/facade-{k}/flat" for k in range(1, 5)), "--mold",
         f"{out}/shared/mold-gehry", "--sheet", "6000x1250", "-o", f"{out}/shared/sheets")

@@ -105,7 +105,7 @@ def test_existing_output_needs_force(tmp_path, net0):
 
 
 def test_isometric_needs_handles(tmp_path, net0):
-    r = dgpc("optimize", net0, "--mode", "isometric", "-o", tmp_path / "out", expect=1)
+    r = dgpc("optimize", net0, "--mode", "isometric", "-o", tmp_path / "out", expect=2)
     assert_one_line_error(r, "--handles")
 
 

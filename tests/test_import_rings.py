@@ -83,4 +83,4 @@ def test_a_float32_revolution_net_passes_extract_mold_at_the_default_tolerance(t
     r = dgpc("extract-mold", tmp_path / "pin32", "-o", tmp_path / "mold")
     assert (tmp_path / "mold.json").exists() and "Error" not in r.stderr
     # the tolerance it used (twice --max-strain) is recorded
-    assert json.loads((tmp_path / "mold.json").read_text())["parameters"]["tol"] == 6e-4
+    assert json.loads((tmp_path / "mold.json").read_text())["parameters"]["revolution_tol"] == 6e-4

@@ -108,14 +108,16 @@ def test_two_triangles(tmp_path):
     assert f[..., :2].min() >= -1e-12 and f[..., :2].max() <= 1 + 1e-12
 
 
-@pytest.mark.parametrize("args, words", [
-    (["--method", "geodesic", "--direction", "0,0,0"], ["--direction", "not all zero"]),
-    (["--method", "project", "--direction", "1,a,0"], ["--direction"]),
-    (["--method", "project", "--direction", "0,0,1", "--spacing", "100"], ["--spacing"]),
+@pytest.mark.parametrize("args, words, code", [
+    (["--method", "geodesic", "--direction", "0,0,0"], ["--direction", "not all zero"], 2),
+    (["--method", "project", "--direction", "1,a,0"], ["--direction"], 2),
+    (["--method", "project", "--direction", "0,0,1", "--edge-length", "100"], ["--edge-length"],
+     1),
 ])
-def test_bad_options_exit_1(tmp_path, args, words):
+def test_bad_options_exit_2_or_1(tmp_path, args, words, code):
+    """A malformed option is a usage error (2); a spacing the mesh cannot take is bad data (1)."""
     path = save(tmp_path / "m.obj", *grid_mesh(6))
-    r = dgpc("init", path, *args, "-o", tmp_path / "out", expect=1)
+    r = dgpc("init", path, *args, "-o", tmp_path / "out", expect=code)
     one_line_error(r, *words)
     assert written(tmp_path) == []
 
@@ -135,7 +137,7 @@ def test_usage_errors_exit_2(tmp_path):
          expect=2)                                                   # a base curve: geodesic
     dgpc("init", path, "--method", "geodesic", "--base", "b1", "--angle", 10, "-o",
          tmp_path / "out", expect=2)                                 # a boundary has no angle
-    dgpc("init", path, "--method", "geodesic", "--cols", 5, "--spacing", 1, "-o",
+    dgpc("init", path, "--method", "geodesic", "--cols", 5, "--edge-length", 1, "-o",
          tmp_path / "out", expect=2)
     dgpc("init", "--surface", "revolution", "--profile", "cone", "--rows", 5, "--cols", 5,
          "--method", "geodesic", "-o", tmp_path / "out", expect=2)

@@ -18,7 +18,7 @@ from dgpc_cli.io.mold import read_mold
 def mold(tmp_path_factory):
     folder = tmp_path_factory.mktemp("mold")
     stem = write(folder / "g", gehry_nets()[1], units="m")
-    dgpc("extract-mold", stem, "--panel-size", 2, "--mold-max-length", 1.3, "--units", "m",
+    dgpc("extract-mold", stem, "--panel-size", 2, "--mold-max-length", 1.3, "--expect-units", "m",
          "-o", folder / "mold")
     return folder / "mold"
 

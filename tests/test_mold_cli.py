@@ -62,7 +62,7 @@ def test_truth_recovers_our_profile_and_minding_gives_an_isometric_one(tmp_path)
     assert doc["data"]["lambda"] == 4.0 and not doc["data"]["lambda_lowered"]
     assert abs(doc["data"]["sector"]["angle_deg"] - 90.0 / (n - 1)) <= 1e-9
 
-    dgpc("extract-mold", tmp_path / "bent", "-o", tmp_path / "default")
+    dgpc("extract-mold", tmp_path / "bent", "--lambda", "compact", "-o", tmp_path / "default")
     d = mold_doc(tmp_path / "default")
     r1 = np.array(d["data"]["profile"]["r"])
     assert d["data"]["segments"] == n - 1 and d["data"]["lambda"] == 1.0
@@ -83,12 +83,12 @@ def test_panels_match_their_mold_patch_and_a_non_isometric_panel_is_caught(tmp_p
     g[6, 4] += 0.02 * np.linalg.norm(g[6, 4] - g[6, 5])          # dent one vertex
     write(tmp_path / "dented", g)
     # at the default --max-strain the dent is refused, naming its worst panel ...
-    err = dgpc("extract-mold", tmp_path / "dented", "--panel-size", 2, "--tol", 0.05,
+    err = dgpc("extract-mold", tmp_path / "dented", "--panel-size", 2, "--revolution-tol", 0.05,
                "-o", tmp_path / "m", expect=1).stderr.strip()
     assert len(err.splitlines()) == 1 and "P-u0" in err and "--max-strain 0.0003" in err
     assert not list(tmp_path.glob("m.*"))
     # ... and a looser one maps it
-    dgpc("extract-mold", tmp_path / "dented", "--panel-size", 2, "--tol", 0.05,
+    dgpc("extract-mold", tmp_path / "dented", "--panel-size", 2, "--revolution-tol", 0.05,
          "--max-strain", 0.05, "-o", tmp_path / "m")
     panels = {p["id"]: p for p in mold_doc(tmp_path / "m")["data"]["panels"]}
     # vertex (6, 4) is a corner of the panels of blocks (2|3, 1|2) only
@@ -128,7 +128,8 @@ def test_lambda_is_lowered_when_x_would_be_imaginary(tmp_path, caplog):
     f = np.stack([rr[:, None] * np.cos(theta), rr[:, None] * np.sin(theta),
                   np.broadcast_to(hh[:, None], (m, n))], axis=-1)
     write(tmp_path / "spiral", f)
-    res = dgpc("extract-mold", tmp_path / "spiral", "-o", tmp_path / "mold")
+    res = dgpc("extract-mold", tmp_path / "spiral", "--lambda", "compact", "-o",
+               tmp_path / "mold")
     doc = mold_doc(tmp_path / "mold")
     lam = doc["data"]["lambda"]
     assert doc["data"]["lambda_lowered"] and lam < 1.0
@@ -154,7 +155,8 @@ def test_gehry_sample_four_deformations_one_mold(tmp_path):
     a cylindrical section share one mold; the cylinder's panels are flat (no mold)."""
     stems = [write(tmp_path / f"facade{k}", f) for k, f in enumerate(gehry_nets(), 1)]
     out = tmp_path / "gehry"
-    dgpc("extract-mold", *stems, "--panel-size", 2, "--mold-max-length", 1.3, "-o", out)
+    dgpc("extract-mold", *stems, "--panel-size", 2, "--mold-max-length", 1.3, "--lambda",
+         "compact", "-o", out)
     doc = mold_doc(out)
     data, met = doc["data"], doc["metrics"]
     panels = data["panels"]
@@ -205,9 +207,9 @@ def test_flat_tol_and_panel_size_change_the_map(tmp_path):
     a, b = mold_doc(tmp_path / "a"), mold_doc(tmp_path / "b")
     assert a["metrics"]["panels"] == 20 * 12 and a["metrics"]["panels_curved"] > 0
     assert b["metrics"]["panels_curved"] == 0 and b["metrics"]["pieces"] == 0
-    assert a["parameters"] == {"segments": None, "lambda": None, "panel_size": 1,
-                               "flat_tol": 1e-5, "mold_max_length": None, "tol": 6e-4,
-                               "max_strain": 3e-4, "units": "mm"}
+    assert a["parameters"] == {"segments": None, "lambda": "design", "panel_size": 1,
+                               "flat_tol": 1e-5, "mold_max_length": None,
+                               "revolution_tol": 6e-4, "max_strain": 3e-4, "units": "mm"}
 
 
 def test_mold_max_length_shorter_than_a_panel_is_an_error(tmp_path):
@@ -247,7 +249,7 @@ def test_refuses_to_overwrite_and_is_byte_deterministic(tmp_path):
 
 def test_mold_obj_holds_the_surface_and_the_sector(tmp_path):
     stem = write(tmp_path / "g", gehry_nets()[0])
-    dgpc("extract-mold", stem, "--panel-size", 2, "-o", tmp_path / "m")
+    dgpc("extract-mold", stem, "--panel-size", 2, "--lambda", "compact", "-o", tmp_path / "m")
     doc = mold_doc(tmp_path / "m")
     text = (tmp_path / "m.obj").read_text().splitlines()
     objects = [line for line in text if line.startswith("o ")]

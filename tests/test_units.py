@@ -84,12 +84,15 @@ def test_a_units_option_is_a_check_naming_both(tmp_path, command):
         dgpc("unfold", tmp_path / "s", "-o", tmp_path / "f")
         args = ["nest", tmp_path / "f", "--sheet", "6000x2000"]
     before = sorted(p.name for p in tmp_path.iterdir())
-    res = dgpc(*args, "--units", "mm", "-o", tmp_path / "out", expect=2)
+    res = dgpc(*args, "--expect-units", "mm", "-o", tmp_path / "out", expect=2)
     err = res.stderr.strip().splitlines()[-1]
-    assert err.startswith("Error") and "--units" in err and "mm given" in err
+    assert err.startswith("Error") and "--expect-units" in err and "mm given" in err
     assert "is in m" in err
     assert _no_output(tmp_path, before)
-    dgpc(*args, "--units", "m", "-o", tmp_path / "out")        # agreeing: fine
+    # the former name still checks, and says it is now --expect-units
+    res = dgpc(*args, "--units", "mm", "-o", tmp_path / "out", expect=2)
+    assert "--units is deprecated, it is now --expect-units" in res.stderr
+    dgpc(*args, "--expect-units", "m", "-o", tmp_path / "out")        # agreeing: fine
 
 
 def test_an_unknown_unit_is_a_usage_error(tmp_path):

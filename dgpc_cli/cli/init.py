@@ -9,29 +9,33 @@ from pathlib import Path
 import click
 
 from dgpc_cli.cli.finite_float import FiniteFloat
+from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import (
     check_writable,
     force_opt,
     format_opt,
+    from_old_name,
+    old_name,
     output_opt,
     show_progress,
 )
-from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import net_files
 from dgpc_cli.io.rhino import with_3dm
-from dgpc_cli.io.units import DEFAULT_UNITS, UNIT_MM
+from dgpc_cli.io.units import DEFAULT_UNITS, UNIT_MM, UNIT_NAMES
 from dgpc_cli.stages.init import init_revolution
 from dgpc_cli.stages.inspect import summarize
 from dgpc_cli.stages.net_size import check_net_size
 from dgpc_cli.surfaces.profiles import describe_builtins
+from dgpc_cli.surfaces.revolution import MAX_TWIST
 
 log = logging.getLogger(__name__)
 
 
 def parse_direction(text: str | None):
-    """``"x,y,z"`` → three floats, not all zero; DgpcError naming --direction otherwise."""
+    """``"x,y,z"`` → three floats, not all zero; a usage error (exit 2) naming --direction
+    otherwise."""
     if text is None:
         return None
     try:
@@ -39,9 +43,21 @@ def parse_direction(text: str | None):
     except ValueError:
         d = []
     if len(d) != 3 or not all(abs(x) < float("inf") for x in d) or not any(d):
-        raise DgpcError(f"{text!r} is not a direction: give three numbers x,y,z, not all zero",
-                        source="--direction")
+        raise click.BadParameter(f"{text!r} is not a direction: give three numbers x,y,z, "
+                                 "not all zero", param_hint="'--direction'")
     return d
+
+
+def assumed_units_line(f, units: str) -> str:
+    """The stderr line of ``init`` without ``--units``: the unit assumed and the net's size in
+    it (its bounding box), so that a profile or mesh drawn in metres is caught at once."""
+    import numpy as np
+
+    size = np.ptp(np.asarray(f, dtype=float).reshape(-1, 3), axis=0)
+    dims = " × ".join(f"{x:.3g}" for x in size)
+    other = "m" if units != "m" else "mm"
+    return (f"init: no --units given: the net is in {units}, {dims} {units} (x × y × z); "
+            f"a model drawn in {UNIT_NAMES.get(other, other)} needs --units {other}")
 
 
 def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacing,
@@ -76,12 +92,14 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
 
 
 @click.command(short_help="Make an initial net.",
-               epilog="Built-in profiles:\n\n\b\n" + describe_builtins())
+               epilog="Built-in profiles (their numbers in the unit of --units: a radius 5 "
+                      "is 5 mm by default, 5 m with --units m):\n\n\b\n" + describe_builtins())
 @click.argument("reference", required=False, type=click.Path(path_type=Path))
 @click.option("--surface", type=click.Choice(["revolution"]),
               help="Analytic surface: 'revolution' (profile revolved about the z axis).")
 @click.option("--profile", metavar="NAME|FILE",
-              help="With --surface: built-in profile name, or a CSV file with header 'r,h'.")
+              help="With --surface: built-in profile name (below), or a CSV file with header "
+                   "'r,h', its numbers in the unit of --units.")
 @click.option("--method", type=click.Choice(["geodesic", "project"]),
               help="With REFERENCE (a triangle mesh, OBJ/PLY/STL/OFF): 'geodesic' traces "
                    "geodesics orthogonally from a base curve (--base); 'project' projects a "
@@ -102,7 +120,7 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
 @click.option("--direction", metavar="x,y,z",
               help="Direction for --method: normal of the base plane (geodesic) or of the "
                    "projection (project).")
-@click.option("--angle", type=FiniteFloat(), metavar="DEG",
+@click.option("--angle", type=FiniteFloat(min=-360, max=360), metavar="DEG",
               help="In-plane angle, degrees: geodesic: the base plane's normal turned about "
                    "the mesh's normal axis; project: the grid turned about the direction.")
 @click.option("--from-quads", "from_quads", type=click.Path(path_type=Path),
@@ -113,32 +131,42 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
 @click.option("--largest-component", is_flag=True,
               help="Keep the largest connected piece of REFERENCE instead of rejecting a mesh "
                    "of several pieces.")
-@click.option("--extend", type=FiniteFloat(min=0), default=0.0, show_default=True,
+@click.option("--extend", type=FiniteFloat(min=0, max=1), default=0.0, show_default=True,
               metavar="FRACTION",
               help="With --method: let the net run beyond the mesh's outer boundary by up to "
-                   "FRACTION of its bounding-box diagonal (paper Fig. 14): the net is traced "
+                   "FRACTION of its bounding-box diagonal (a ratio, no unit; paper Fig. 14): "
+                   "the net is traced "
                    "on the mesh continued in its boundary's tangent planes, and `optimize` "
                    "fits it to that continuation (reaching twice as far, so the net's rim "
                    "meets no boundary); the net records the mesh itself.")
 @click.option("--rows", "rows", type=click.IntRange(min=3),
-              help="m: vertices along the geodesics (default with a mesh: square quads).")
+              help="m: vertices along the geodesics (required with --surface; default with a "
+                   "mesh: square quads).")
 @click.option("--cols", "cols", type=click.IntRange(min=3),
-              help="n: vertices across the geodesics (default with a mesh: 21).")
-@click.option("--spacing", type=FiniteFloat(min=0, min_open=True),
-              help="With a mesh, instead of --cols: vertex spacing in model units (also along "
-                   "the geodesics unless --rows is given).")
-@click.option("--span", "span", type=FiniteFloat(), default=180.0, show_default=True,
+              help="n: vertices across the geodesics (required with --surface; default with a "
+                   "mesh: 21).")
+@click.option("--edge-length", "spacing", type=LengthParam(min=0, min_open=True),
+              metavar="LENGTH", callback=from_old_name("--edge-length"),
+              help=length_help("With a mesh, instead of --cols: the vertex spacing, the length "
+                               "of the net's edges across the geodesics (also along them "
+                               "unless --rows is given), > 0.",
+                               where="in the model's unit (--units)"))
+@old_name("--spacing", "--edge-length", type=LengthParam(min=0, min_open=True))
+@click.option("--span", "span", type=FiniteFloat(min=0, min_open=True, max=360), default=180.0,
+              show_default=True,
               help="--surface: angle covered by the v-lines, degrees (360: a full ring).")
-@click.option("--twist", type=FiniteFloat(), default=0.0, show_default=True,
+@click.option("--twist", type=FiniteFloat(min=-MAX_TWIST, max=MAX_TWIST), default=0.0,
+              show_default=True,
               help="--surface: shear T, radians: the angle of f(u, v) gets T·s(u)/s_total "
                    "added, so the initial u-lines are not meridians (paper Fig. 11).")
 @click.option("--reference-out", type=click.Path(dir_okay=False, path_type=Path),
               help="--surface: also write the triangulated surface (OBJ), fine enough to be "
                    "the reference for `optimize --mode fit`.")
-@click.option("--units", type=click.Choice(list(UNIT_MM)), default=DEFAULT_UNITS,
-              show_default=True,
+@click.option("--units", type=click.Choice(list(UNIT_MM)), default=None,
               help="Length unit of the coordinates (of the profile, mesh or quad net, and of "
-                   "the net made): every later stage carries it on; DXF files are in mm.")
+                   "the net made): every later stage carries it on; DXF files are in mm. "
+                   f"[default: {DEFAULT_UNITS}, and stderr says so with the net's size: a "
+                   "built-in profile of radius 5 is then 5 mm]")
 @output_opt
 @force_opt
 @format_opt
@@ -151,9 +179,9 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     \b
     dgpc init --surface revolution --profile NAME|FILE --rows M --cols N -o STEM
     dgpc init MESH --method geodesic [--base auto|section|boundary|bK] [--direction x,y,z]
-              [--angle DEG] [--rows M] [--cols N|--spacing S] [--extend F] -o STEM
+              [--angle DEG] [--rows M] [--cols N|--edge-length L] [--extend F] -o STEM
     dgpc init MESH --method project [--direction x,y,z] [--angle DEG] [--rows M]
-              [--cols N|--spacing S] [--extend F] -o STEM
+              [--cols N|--edge-length L] [--extend F] -o STEM
     dgpc init --from-quads NET.obj [MESH] -o STEM
 
     With --surface the z axis is the axis of revolution and a CSV profile is resampled by arc
@@ -167,14 +195,14 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
                                + (f" (got {', '.join(sources)})" if sources else ""))
     if surface:
         if reference is not None or spacing is not None or direction is not None:
-            raise click.UsageError("--surface takes no REFERENCE, --direction or --spacing")
+            raise click.UsageError("--surface takes no REFERENCE, --direction or --edge-length")
         if profile is None or rows is None or cols is None:
             raise click.UsageError("--surface needs --profile, --rows and --cols")
     elif method:
         if reference is None:
             raise click.UsageError("--method needs a REFERENCE mesh")
         if cols is not None and spacing is not None:
-            raise click.UsageError("give --cols or --spacing, not both")
+            raise click.UsageError("give --cols or --edge-length, not both")
         if method == "project" and base is not None:
             raise click.UsageError("--base goes with --method geodesic")
         if base not in (None, "auto", "section") and (direction is not None or angle is not None):
@@ -186,6 +214,10 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     if (profile or reference_out) and not surface:
         raise click.UsageError("--profile and --reference-out go with --surface")
     d = parse_direction(direction)
+    given_units = units
+    units = units or DEFAULT_UNITS
+    if spacing is not None:
+        spacing = spacing.in_units(units, artifact_units=units)
     check_writable(output, force, *([reference_out] if reference_out else []))
     json_path, _ = artifact_paths(output)
     folder = json_path.resolve().parent
@@ -214,6 +246,8 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     net.units = units
     net.parameters["units"] = units
     net.metrics = summarize(net, mesh=mesh)
+    if given_units is None and show_progress(ctx):
+        click.echo(assumed_units_line(net.f, units), err=True)
     files.update(with_3dm(net_files(output, net), output, fmt))
     write_files(files, force=force)
     click.echo(str(json_path))

@@ -8,7 +8,7 @@ from pathlib import Path
 import click
 import numpy as np
 
-from dgpc_cli.cli.finite_float import FiniteFloat
+from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import force_opt, format_opt
 from dgpc_cli.cli.output_path import OutputPath
 from dgpc_cli.errors import DgpcError
@@ -18,7 +18,7 @@ from dgpc_cli.io.laths import laths_files
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.units import same_units
-from dgpc_cli.stages.laths import GAP, gridshell
+from dgpc_cli.stages.laths import GAP, crossing_gap, gridshell
 from dgpc_cli.stages.soundness import require_sound_net
 
 log = logging.getLogger(__name__)
@@ -27,9 +27,9 @@ log = logging.getLogger(__name__)
 @click.command(short_help="Gridshell laths of two nets and their cut list.")
 @click.argument("net_a", type=click.Path(path_type=Path))
 @click.argument("net_b", type=click.Path(path_type=Path))
-@click.option("--gap", type=FiniteFloat(min=0, min_open=True),
-              help=f"Largest distance between two laths at a crossing (default: {GAP} × the "
-                   "mean edge length of the nets).")
+@click.option("--gap", type=LengthParam(min=0, min_open=True), metavar="LENGTH",
+              help=length_help(f"Largest distance between two laths at a crossing, > 0 "
+                               f"[default: {GAP} × the mean edge length of the nets]."))
 @click.option("-o", "--output", "output", required=True,
               type=OutputPath(),
               help="Output stem: writes STEM.json, STEM.obj (laths as polylines) and STEM.csv "
@@ -60,6 +60,7 @@ def laths(net_a, net_b, gap, output, force, fmt):
     ref_a, ref_b = a.data.get("reference"), b.data.get("reference")
     if ref_a and ref_b and ref_a.get("sha256") != ref_b.get("sha256"):
         log.warning("%s and %s record different references", net_a, net_b)
+    gap = crossing_gap(a.f, b.f, None if gap is None else gap.in_units(units, units))
     laths_a, laths_b, crossings = gridshell(a.f, b.f, gap=gap)
     if len(crossings.a) == 0:
         raise DgpcError("the laths of the two nets do not cross (are the nets on one reference, "

@@ -84,6 +84,8 @@ class LengthParam(click.ParamType):
             number, unit = float(value), None
         else:
             match = _LENGTH.match(str(value))
+            if match is None and _non_finite(str(value)):
+                self.fail(f"{value!r} is not a finite length.", param, ctx)
             if match is None:
                 self.fail(f"{value!r} is not a length (a number, optionally with a unit: "
                           f"{', '.join(UNIT_MM)}; e.g. 2.5m, 2500mm).", param, ctx)
@@ -101,7 +103,17 @@ class LengthParam(click.ParamType):
         return Length(number, unit, self.plain)
 
 
-def length_help(text: str, plain: str | None = ARTIFACT_UNIT) -> str:
-    """An option's help with the rule for its units appended."""
-    where = ("in the artifact's unit (its data.units)" if plain is None else f"in {plain}")
+def _non_finite(text: str) -> bool:
+    """Whether ``text`` is a number Python reads as NaN or ±inf (``nan``, ``-inf``)."""
+    try:
+        return not math.isfinite(float(text))
+    except ValueError:
+        return False
+
+
+def length_help(text: str, plain: str | None = ARTIFACT_UNIT, where: str | None = None) -> str:
+    """An option's help with the rule for its units appended (``where``: what a plain number
+    is in, for an option whose unit is neither an artifact's nor fixed, e.g. ``init --units``)."""
+    where = where or ("in the artifact's unit (its data.units)" if plain is None
+                      else f"in {plain}")
     return f"{text} A LENGTH with a unit (2.5m, 2500mm, 0.5mm) or a plain number {where}."

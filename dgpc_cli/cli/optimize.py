@@ -75,7 +75,9 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
                    "and the new net records none.")
 @click.option("--handles", type=click.Path(path_type=Path),
               help='Handles JSON: {"handles": [{"index": [u, v], "target": [x, y, z]} | '
-                   '{"index": [u, v], "offset": [dx, dy, dz]}]}.')
+                   '{"index": [u, v], "offset": [dx, dy, dz]}]}: u the row (0..m−1, along the '
+                   'geodesics), v the column (0..n−1); targets and offsets in the net\'s unit '
+                   '(its data.units, from init --units).')
 @click.option("--steps", type=click.IntRange(min=1), default=1, show_default=True,
               help="Reach the handles in K increments, as a dragged handle would.")
 @click.option("--weight", "weights", multiple=True, metavar="NAME=VALUE|NAME=A->B",
@@ -87,7 +89,7 @@ def _reference(net: NetArtifact, json_path: Path, reference: Path | None, mode: 
                    "step and for the projection].")
 @click.option("--tol", type=FiniteFloat(min=0, min_open=True), default=TOL.solver_R,
               show_default=True, help="Tolerance on the residual of the hard constraints "
-                                      "(net scaled to mean edge length 1).")
+                                      "(no unit: the net scaled to mean edge length 1).")
 @click.option("--max-strain", type=FiniteFloat(min=0, min_open=True),
               default=TOL.max_strain, show_default=True,
               help="revolution: largest relative error of a quad's edges and diagonals against "
@@ -139,7 +141,7 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
     if handles is not None:
         handle_ids, handle_targets = read_handles(handles, net.shape, net.f_mm, scale=mm)
     if mode == "isometric" and handle_ids is None:
-        raise DgpcError("--mode isometric needs --handles", source="--handles")
+        raise click.UsageError("--mode isometric needs --handles")
 
     with SolverProgress(ctx, f"optimize ({mode})", tol) as progress:
         fit = fit_surface(mesh, net.extend) if mesh is not None else None

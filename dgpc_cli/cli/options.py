@@ -20,17 +20,53 @@ format_opt = click.option(
     "--format", "fmt", type=click.Choice(["obj", "3dm"]), default="obj", show_default=True,
     help="Geometry format: with 3dm, also write STEM.3dm (Rhino, in the artifact's unit, "
          "layers per part) beside the OBJ and list it in the JSON (data.rhino_3dm).")
-units_check_opt = click.option(
-    "--units", "units_check", type=click.Choice(list(UNIT_MM)), default=None,
-    help="Only a check: the unit the input is in (its data.units, set by `init --units`); a "
-         "different one is a usage error. Nothing is converted by it.")
+
+
+def old_name(old: str, new: str, type=None):
+    """A hidden option ``old``, the former name of the option ``new``: it warns on stderr and
+    hands its value to ``new``, whose callback must be :func:`from_old_name` (its value wins
+    when both are given). Scripts keep working while the help shows one name per meaning."""
+    key = f"old_name:{new}"
+
+    def callback(ctx, param, value):
+        if value is not None:
+            click.echo(f"warning: {old} is deprecated, it is now {new}", err=True)
+            ctx.meta[key] = value
+        return value
+
+    return click.option(old, key.replace(":", "_").replace("-", "_"), type=type, hidden=True,
+                        expose_value=False, callback=callback, is_eager=True)
+
+
+def from_old_name(new: str):
+    """The callback of option ``new`` that takes the value of its :func:`old_name` alias when
+    ``new`` itself is not given."""
+    key = f"old_name:{new}"
+
+    def callback(ctx, param, value):
+        source = ctx.get_parameter_source(param.name)
+        given = source is not None and source.name in ("COMMANDLINE", "ENVIRONMENT")
+        return value if given or key not in ctx.meta else ctx.meta[key]
+
+    return callback
+
+
+def units_check_opt(f):
+    """``--expect-units U``: a check of the input's unit (formerly ``--units``, which in
+    ``init`` sets the unit: one name, one meaning)."""
+    f = click.option(
+        "--expect-units", "units_check", type=click.Choice(list(UNIT_MM)), default=None,
+        callback=from_old_name("--expect-units"),
+        help="Only a check: the unit the input is in (its data.units, set by `init --units`); "
+             "a different one is a usage error. Nothing is converted by it.")(f)
+    return old_name("--units", "--expect-units", type=click.Choice(list(UNIT_MM)))(f)
 
 
 def check_units(given: str | None, actual: str, source) -> None:
     """A usage error (exit 2) naming both units when ``--units`` disagrees with the input."""
     if given is not None and given != actual:
         raise click.BadParameter(f"{given} given, but {source} is in {actual} (its data.units, "
-                                 "set by `dgpc init --units`)", param_hint="'--units'")
+                                 "set by `dgpc init --units`)", param_hint="'--expect-units'")
 
 
 def check_writable(stem: Path, force: bool, *extra: Path) -> None:

@@ -22,6 +22,10 @@ SUPPORTED_VERSIONS = (2,)
 OLDER_VERSIONS = {1: "it predates length units (data.units): re-run its pipeline from "
                      "`dgpc init ... --units mm|cm|m|in|ft` with this dgpc"}
 KINDS = ("net", "mold", "strips", "flat", "sheets", "laths")
+#: The stage that makes each kind, for messages about an artifact of the wrong kind.
+MADE_BY = {"net": "dgpc init (or dgpc optimize NET)", "mold": "dgpc extract-mold NET",
+           "strips": "dgpc planarize-strips NET", "flat": "dgpc unfold STRIPS",
+           "sheets": "dgpc nest FLAT", "laths": "dgpc laths NET_A NET_B"}
 ENVELOPE_KEYS = ("kind", "schema_version", "created_by", "inputs", "parameters", "data",
                  "metrics", "status")
 
@@ -270,7 +274,8 @@ def validate_envelope(doc: Any, kind: str, source: str | Path) -> None:
                         f"{type(doc).__name__}, expected an object", source=source)
     found = doc.get("kind")
     if isinstance(found, str) and found != kind:
-        raise DgpcError(f"kind: is a '{found}' artifact, expected '{kind}'", source=source)
+        raise DgpcError(f"kind: is a '{found}' artifact, expected '{kind}' (made by "
+                        f"`{MADE_BY.get(kind, kind)}`)", source=source)
     version = doc.get("schema_version")
     if isinstance(version, int) and not isinstance(version, bool) \
             and version in OLDER_VERSIONS:

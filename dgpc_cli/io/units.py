@@ -25,6 +25,9 @@ from ..errors import DgpcError
 
 #: Length units an artifact may be in, and their size in mm.
 UNIT_MM = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4, "ft": 304.8}
+#: The units in words, for messages.
+UNIT_NAMES = {"mm": "millimetres", "cm": "centimetres", "m": "metres", "in": "inches",
+              "ft": "feet"}
 #: The unit of ``dgpc init`` without ``--units``.
 DEFAULT_UNITS = "mm"
 #: How far (ulps) :func:`from_mm` may move a value to make it exact in every unit.

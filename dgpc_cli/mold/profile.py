@@ -183,6 +183,41 @@ def meridian(d: np.ndarray, l: np.ndarray, n0: int, *, segments: float | None = 
                     segments=N, lam=N / n0, requested=requested, lowered=lowered)
 
 
+def row_turning(f: np.ndarray) -> np.ndarray:
+    """The angle ``Φ(u) (m,)`` (radians) through which each row (v-line) of a net ``f (m, n, 3)``
+    turns, n ≥ 3: the sum of the angles between its consecutive v-edges, scaled by
+    (n−1)/(n−2) to the arc's central angle. On a surface of revolution a row is a parallel
+    circle and Φ(u) = (n−1)·θ exactly, the angle the net spans; the net bent isometrically
+    keeps it roughly."""
+    e = np.diff(np.asarray(f, dtype=float), axis=1)
+    a, b = e[:, :-1], e[:, 1:]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cos = np.einsum("ijk,ijk->ij", a, b) / (np.linalg.norm(a, axis=-1)
+                                                * np.linalg.norm(b, axis=-1))
+    n = f.shape[1]
+    return np.arccos(np.clip(cos, -1.0, 1.0)).sum(axis=1) * (n - 1) / (n - 2)
+
+
+#: The least turn (radians) of the rows for which :func:`design_lambda` measures a λ.
+MIN_TURNING = 1e-6
+
+
+def design_lambda(nets: list[np.ndarray]) -> tuple[float, float] | None:
+    """``(λ, Φ)``: Minding's λ (relative to the full turn, Prop. 4.3) of the surface of
+    revolution the nets are drawn on, λ = 2π/Φ with Φ the median of :func:`row_turning` over
+    the rows of every net: exact for a net on a surface of revolution (λ = 360°/span), the
+    surface whose parallels turn as the rows do for a net bent from one. None when it cannot
+    be measured (a net of one column, or straight rows)."""
+    turns = [row_turning(f) for f in nets if f.shape[1] >= 3]
+    if not turns:
+        return None
+    phi = float(np.nanmedian(np.concatenate(turns)))
+    if not phi > MIN_TURNING:
+        return None
+    # 10 digits: a measured λ, not the last bits of the rows' angles (a full ring is λ = 1)
+    return float(f"{2.0 * math.pi / phi:.10g}"), phi
+
+
 def column_factors(w: np.ndarray, d: np.ndarray) -> np.ndarray:
     """c_j of strip widths ``w (m, n−1) ≈ c_j d(u)``: the mean over u of w_j(u)/d(u), ``(n−1,)``."""
     return (w / d[:, None]).mean(axis=0)

@@ -4,8 +4,9 @@ the panel-to-mold map (SPEC §6, paper §4.2.2, Prop. 4.3, §6.2.3, Fig. 1, 16, 
 1. Each net must satisfy (5) (:func:`~dgpc_cli.mold.profile.check_revolution`); several nets must
    be isometric to the same surface of revolution as the first (same rows, proportional strip
    widths d(u), equal meridian steps l(u)).
-2. From the first net's d(u), l(u): r(u), x(u), h(u) with N segments per turn (default n−1, one
-   full turn) or Minding's λ = N/(n−1), lowered when x(u) would be imaginary.
+2. From the first net's d(u), l(u): r(u), x(u), h(u) with N segments per turn or Minding's
+   λ = N/(n−1) (:func:`choose_lambda`: by default the design's own surface, λ = 360°/span;
+   ``compact``: λ = 1, one full turn), lowered when x(u) would be imaginary.
 3. Every K×K panel of every net is compared with its patch on the mold (edges and diagonals),
    flagged flat where κ = −δ_uu w / w ≈ 0, and assigned a mold piece: the sector just wide enough
    for the widest panel, cut along the meridian into pieces no longer than the limit.
@@ -36,10 +37,12 @@ from dgpc_cli.mold.profile import (
     check_revolution,
     check_same_surface,
     column_factors,
+    design_lambda,
     meridian,
     mold_grid,
     net_widths,
 )
+from dgpc_cli.surfaces.minding import circumradius
 from dgpc_cli.tolerances import tol as TOL
 
 log = logging.getLogger(__name__)
@@ -53,6 +56,36 @@ DEFAULT_TOL_FACTOR = 2.0
 DEFAULT_TOL = DEFAULT_TOL_FACTOR * DEFAULT_MAX_STRAIN
 DEFAULT_FLAT_TOL = 1e-5
 DEFAULT_PANEL_SIZE = 1
+#: The choices of ``--lambda`` besides a number, the first the default.
+LAMBDA_CHOICES = ("design", "compact")
+
+
+@dataclass(frozen=True)
+class LambdaChoice:
+    """Which surface of revolution: ``how`` (design, compact, value or segments), the λ asked
+    for (None: N = ``segments``) and the design's λ and row turn Φ (radians) where measured."""
+
+    how: str
+    lam: float | None
+    design: tuple[float, float] | None
+
+
+def choose_lambda(nets: list[np.ndarray], spec: str | float | None,
+                  segments: float | None = None) -> LambdaChoice:
+    """The λ of ``--lambda spec`` (``design``, ``compact`` or a number; None: ``design``
+    unless ``segments`` is given). ``design`` is the surface the nets' rows turn on
+    (:func:`~dgpc_cli.mold.profile.design_lambda`), ``compact`` the full-turn one (λ = 1);
+    a design whose turn cannot be measured (one column, straight rows) falls back to compact."""
+    design = design_lambda(nets)
+    if segments is not None:
+        return LambdaChoice("segments", None, design)
+    if spec is None or spec == "design":
+        if design is None:
+            return LambdaChoice("compact", 1.0, None)
+        return LambdaChoice("design", design[0], design)
+    if spec == "compact":
+        return LambdaChoice("compact", 1.0, design)
+    return LambdaChoice("value", float(spec), design)
 
 
 @dataclass(frozen=True)
@@ -81,6 +114,40 @@ class Mold:
     piece_of_row: np.ndarray   # (I,) piece index per panel row, −1 = none
     sector_angle: float        # radians, the widest panel
     panel_size: int
+    choice: LambdaChoice | None = None
+
+    def choice_line(self, units: str) -> str:
+        """One line for stderr: which surface of revolution was built, and why, with the
+        radii of the other choice (``--lambda design|compact``)."""
+        mer, choice = self.meridian, self.choice
+        n0 = mer.segments / mer.lam
+
+        def size(lam: float) -> str:
+            r = circumradius(mer.d, 2.0 * math.pi / (lam * n0))
+            return f"r {r.min():.3g}–{r.max():.3g} {units}"
+
+        built = f"λ = {mer.lam:.4g}, {size(mer.lam)}, {mer.h[-1] - mer.h[0]:.3g} {units} tall"
+        design = choice.design if choice is not None else None
+        turn = (f"the nets' rows turn {math.degrees(design[1]):.4g}°" if design is not None
+                else "the rows' turn could not be measured")
+        how = choice.how if choice is not None else "segments"
+        if how == "design":
+            text = (f"the design's own surface of revolution (--lambda design: {turn}): "
+                    f"{built}; --lambda compact gives the full-turn surface isometric to it "
+                    f"({size(1.0)}), a mold to turn on a lathe")
+        elif how == "compact":
+            other = (f"; --lambda design gives the design's own surface (λ = {design[0]:.4g}, "
+                     f"{size(design[0])})" if design is not None else f" ({turn})")
+            text = (f"the full-turn surface of revolution isometric to the nets (--lambda "
+                    f"compact), a mold to turn on a lathe: {built}{other}")
+        else:
+            asked = "--segments" if how == "segments" else "--lambda"
+            other = (f"; the design's own surface is λ = {design[0]:.4g}"
+                     if design is not None else "")
+            text = (f"the surface of revolution of {asked} (Minding's bending of the full turn, "
+                    f"Prop. 4.3): {built}{other}")
+        lowered = (" (λ lowered so that every x(u) is real)" if mer.lowered else "")
+        return f"extract-mold: {text}{lowered}"
 
     def panel_records(self) -> list[dict]:
         """The panel-to-mold map: one JSON-able record per panel, nets in order, row-major."""
@@ -130,15 +197,16 @@ class Mold:
 
 
 def extract_mold(nets: list[tuple[str, np.ndarray]], *, segments: float | None = None,
-                 lam: float | None = None, panel_size: int = DEFAULT_PANEL_SIZE,
+                 lam: float | str | None = None, panel_size: int = DEFAULT_PANEL_SIZE,
                  flat_tol: float = DEFAULT_FLAT_TOL, max_length: float | None = None,
                  tol: float = DEFAULT_TOL, max_strain: float = DEFAULT_MAX_STRAIN) -> Mold:
     """The mold of the nets ``[(name, f (m, n_k, 3)), …]`` (names are used in messages).
 
-    ``segments`` (N) and ``lam`` (λ = N/(n−1), n of the first net) are exclusive; neither gives
-    one full turn. Raises DgpcError naming the net (or option) at fault: (5) fails beyond
-    ``tol``, a net differs from the first, a panel is further than ``max_strain`` from its
-    mold patch, a panel row is longer than ``max_length``.
+    ``segments`` (N) and ``lam`` (λ = N/(n−1), n of the first net; or ``design``, ``compact``:
+    :func:`choose_lambda`) are exclusive; neither gives the design's own surface. Raises
+    DgpcError naming the net (or option) at fault: (5) fails beyond ``tol``, a net differs
+    from the first, a panel is further than ``max_strain`` from its mold patch, a panel row
+    is longer than ``max_length``.
     """
     if segments is not None and lam is not None:
         raise ValueError("give segments or lam, not both")
@@ -150,7 +218,8 @@ def extract_mold(nets: list[tuple[str, np.ndarray]], *, segments: float | None =
     for (name, _), wd in zip(nets[1:], widths[1:], strict=True):
         check_same_surface(ref, wd, tol, name, ref_name)
     factors = [column_factors(wd.w, ref.d) for wd in widths]
-    mer = meridian(ref.d, ref.l, nets[0][1].shape[1] - 1, segments=segments, lam=lam,
+    choice = choose_lambda([f for _, f in nets], lam, segments)
+    mer = meridian(ref.d, ref.l, nets[0][1].shape[1] - 1, segments=segments, lam=choice.lam,
                    c_max=max(float(c.max()) for c in factors))
     m = nets[0][1].shape[0]
     row_starts = block_starts(m - 1, K)
@@ -178,7 +247,7 @@ def extract_mold(nets: list[tuple[str, np.ndarray]], *, segments: float | None =
     pieces, piece_of_row = cut_pieces(rows, needs_mold, mer.l, max_length)
     sector = max(float(np.radians(np.diff(p.angles, axis=1)).max()) for p in per_net)
     return Mold(meridian=mer, nets=per_net, rows=rows, pieces=pieces,
-                piece_of_row=piece_of_row, sector_angle=sector, panel_size=K)
+                piece_of_row=piece_of_row, sector_angle=sector, panel_size=K, choice=choice)
 
 
 def _check_panels(per_net: list[NetPanels], row_starts: np.ndarray, K: int, max_strain: float,

@@ -48,7 +48,7 @@ END_INSET = 1e-7
 REFINE_STEPS = 30
 #: Loss of geodesic range, relative, accepted for each step of the band's ends towards the boundary.
 REFINE_SLACK = 1e-6
-#: Default number of columns when neither --cols nor --spacing is given.
+#: Default number of columns when neither --cols nor --edge-length is given.
 DEFAULT_COLS = 21
 
 
@@ -78,7 +78,7 @@ def _positions(lo: float, hi: float, count: int | None, spacing: float | None):
 def _check_count(count: int, what: str, option: str):
     if count < 3:
         raise DgpcError(f"the usable part of the mesh gives only {count} {what}; a net needs "
-                        "at least 3 (lower --spacing)", source=option)
+                        "at least 3 (lower --edge-length)", source=option)
 
 
 def _check_size(cols: int | None, rows: int | None, spacing: float | None, across: float,
@@ -93,8 +93,8 @@ def _check_size(cols: int | None, rows: int | None, spacing: float | None, acros
         m = along / spacing + 1
     else:
         m = along / (across / max(n - 1, 1)) + 1 if across > 0 else 1
-    source = "--spacing" if spacing is not None else "--rows/--cols"
-    check_net_size(m, n, source, "use a larger --spacing" if spacing is not None
+    source = "--edge-length" if spacing is not None else "--rows/--cols"
+    check_net_size(m, n, source, "use a larger --edge-length" if spacing is not None
                    else "use fewer --rows or --cols")
 
 
@@ -148,7 +148,7 @@ class MeshGrid:
     ``v (n,)`` (arc lengths along the geodesics and the base curve, or plane coordinates), a
     ``label`` for messages (``"section 90°"``, ``"boundary b2"``), ``remake(u0, u1, v0, v1)``
     that makes the net again over that rectangle of the parameters (same --rows/--cols or
-    --spacing settings), and whether the net is meant to be gpc already (``traced``: geodesics
+    --edge-length settings), and whether the net is meant to be gpc already (``traced``: geodesics
     traced on the mesh; a projected grid is not, ``optimize --mode fit`` makes it so)."""
 
     net: NetArtifact
@@ -200,7 +200,7 @@ class _Fan:
         want = cols if cols is not None else (DEFAULT_COLS if spacing is None else None)
         _check_size(want, rows, spacing, t1 - t0, s1 - s0)
         t = _positions(t0, t1, want, spacing)
-        _check_count(len(t), "columns", "--spacing")
+        _check_count(len(t), "columns", "--edge-length")
         pts, fcs, u = _base_seeds(self.curve, t, self.normals)
         forward, backward, ahead, behind = self.tracer.fan(pts, fcs, u, self.reach)
         s0, s1 = max(s0, -float(behind.min())), min(s1, float(ahead.min()))
@@ -210,7 +210,7 @@ class _Fan:
         if rows is None and spacing is None:
             rows = max(3, int(round((s1 - s0) / ((t1 - t0) / (len(t) - 1)))) + 1)
         s = _positions(s0, s1, rows, spacing if rows is None else None)
-        _check_count(len(s), "rows", "--spacing")
+        _check_count(len(s), "rows", "--edge-length")
         f = np.stack([sample_geodesic(fw, bw, s) for fw, bw in zip(forward, backward,
                                                                      strict=True)], axis=1)
         return f, s, t
@@ -344,8 +344,8 @@ def init_project(mesh: ReferenceMesh, *, direction=None, angle: float = 0.0,
         if want_r is None and spacing is None:
             want_r = max(3, int(round((x1 - x0) / ((y1 - y0) / (len(gy) - 1)))) + 1)
         gx = _positions(x0, x1, want_r, spacing if want_r is None else None)
-        _check_count(len(gx), "rows", "--spacing")
-        _check_count(len(gy), "columns", "--spacing")
+        _check_count(len(gx), "rows", "--edge-length")
+        _check_count(len(gy), "columns", "--edge-length")
         P, ok = _cast(mesh, tree, rays(gx, gy).reshape(-1, 3), d)
         if not ok.all():
             return None

@@ -130,14 +130,20 @@ def find_crossings(family_a: list[Lath], family_b: list[Lath], *, gap: float) ->
                      point=0.5 * (xa[best] + xb[best]))
 
 
+def crossing_gap(f_a: np.ndarray, f_b: np.ndarray, gap: float | None = None) -> float:
+    """The largest gap of a crossing: ``gap``, by default :data:`GAP` × the mean edge length
+    of the two nets (in their unit)."""
+    from dgpc_cli.core.problem import mean_edge_length
+
+    if gap is not None:
+        return float(gap)
+    return float(GAP * 0.5 * (mean_edge_length(f_a) + mean_edge_length(f_b)))
+
+
 def gridshell(f_a: np.ndarray, f_b: np.ndarray, *, gap: float | None = None):
     """Laths of the nets ``f_a``, ``f_b`` (families A and B) and their crossings.
 
-    ``gap`` default: :data:`GAP` × the mean edge length of the two nets.
+    ``gap`` default: see :func:`crossing_gap`.
     """
-    from dgpc_cli.core.problem import mean_edge_length
-
     laths_a, laths_b = laths_of(f_a, "A"), laths_of(f_b, "B")
-    if gap is None:
-        gap = GAP * 0.5 * (mean_edge_length(f_a) + mean_edge_length(f_b))
-    return laths_a, laths_b, find_crossings(laths_a, laths_b, gap=gap)
+    return laths_a, laths_b, find_crossings(laths_a, laths_b, gap=crossing_gap(f_a, f_b, gap))

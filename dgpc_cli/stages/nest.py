@@ -97,8 +97,9 @@ def check_fit(parts: list[Part], sheet: Sheet, rotations: list[float]) -> None:
             raise DgpcError(
                 f"part {p.id} ({x1 - x0:.1f} x {y1 - y0:.1f} mm) does not fit on the "
                 f"{sheet.width:g} x {sheet.height:g} mm sheet inside its {sheet.margin:g} mm "
-                f"margin with rotations {', '.join(f'{r:g}' for r in rotations)}",
-                source="--sheet")
+                f"margin with rotations {', '.join(f'{r:g}' for r in rotations)}; use a "
+                "larger --sheet, or cut long strips into boards with `dgpc unfold "
+                "--stock-length LENGTH`", source="--sheet")
 
 
 def check_layout(outlines: list[np.ndarray], sheets: list[int], sheet: Sheet) -> None:
