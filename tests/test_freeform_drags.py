@@ -17,13 +17,18 @@ from dgpc_cli.tolerances import tol as TOL
 M = N = 21
 
 
+def meridian_net(tmp_path_factory, profile):
+    """A folder with ``s0``: the 21×21 meridian net of the built-in ``profile``, 120° wide."""
+    d = tmp_path_factory.mktemp(profile)
+    dgpc("init", "--surface", "revolution", "--profile", profile, "--rows", M, "--cols", N,
+         "--span", 120, "-o", d / "s0")
+    return d
+
+
 @pytest.fixture(scope="module")
 def zone(tmp_path_factory):
     """The 21×21 meridian net of a sphere zone (radius 5, ±45°), 120° wide."""
-    d = tmp_path_factory.mktemp("zone")
-    dgpc("init", "--surface", "revolution", "--profile", "sphere-zone", "--rows", M, "--cols", N,
-         "--span", 120, "-o", d / "s0")
-    return d
+    return meridian_net(tmp_path_factory, "sphere-zone")
 
 
 def push(d, name, row, fraction):
@@ -192,10 +197,7 @@ def test_a_relaxation_round_that_begins_to_pleat_ends_there(tmp_path):
 @pytest.fixture(scope="module")
 def sphere(tmp_path_factory):
     """The 21×21 meridian net of the built-in sphere profile, 120° wide."""
-    d = tmp_path_factory.mktemp("sphere")
-    dgpc("init", "--surface", "revolution", "--profile", "sphere", "--rows", M, "--cols", N,
-         "--span", 120, "-o", d / "s0")
-    return d
+    return meridian_net(tmp_path_factory, "sphere")
 
 
 def test_a_revolution_push_between_held_corners_keeps_the_strips_congruent_without_crease(
