@@ -23,7 +23,7 @@ def _bound(name, layout, rng):
         w0 = rng.uniform(0.5, 1.5, layout.n_edges)
         cos0 = rng.uniform(-0.3, 0.3, len(boundary_angle_pairs(layout)))
         return lambda x: TERMS[name](x, layout, w0=w0, cos0=cos0)
-    if name in ("displacement_fairness", "closeness"):
+    if name in ("displacement_fairness", "displacement_smoothness", "closeness"):
         f0 = rng.standard_normal((layout.n_vertices, 3))
         return lambda x: TERMS[name](x, layout, f0)
     if name == "handles":

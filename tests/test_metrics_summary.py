@@ -17,7 +17,7 @@ def sphere_net(R=2.0, m=21, n=15):
 
 BASE_KEYS = {"shape", "gpc_angle_defect_max", "orthogonality_max", "arclength_spread_max",
              "strip_width_spread_max", "ratio_spread_max", "jacobi_residual_max", "edges",
-             "gaussian_curvature", "u_spread_max", "pleat_max", "parallel_departure"}
+             "gaussian_curvature", "u_spread_max", "pleat_max", "crease_max", "parallel_departure"}
 
 
 def test_plain_metrics_of_a_meridian_net():

@@ -8,6 +8,7 @@ import numpy as np
 
 from dgpc_cli.metrics.clairaut import as_axis, clairaut
 from dgpc_cli.metrics.coverage import coverage
+from dgpc_cli.metrics.crease import crease
 from dgpc_cli.metrics.curvature import gaussian_curvature
 from dgpc_cli.metrics.frames import as_grid
 from dgpc_cli.metrics.freeform import parallel_departure
@@ -63,7 +64,8 @@ def net_metrics(f, *, axis=None, against=None, reference=None, surface=None,
         shape [m, n]; gpc_angle_defect_max (rad, Prop. 2.7 (ii)); orthogonality_max
         (|⟨T^u, T^v⟩|, Lemma 2.5); arclength_spread_max (§5.1); strip_width_spread_max ((7));
         ratio_spread_max ((5)); u_spread_max (u-edges per row, §4.2.1); pleat_max
-        (period-2 corrugation across the geodesics, × mean edge); jacobi_residual_max
+        (period-2 corrugation across the geodesics, × mean edge); crease_max (largest third
+        difference across the geodesics along a row, × mean edge); jacobi_residual_max
         (|(2)| / mean v-edge);
         edges {min, mean, max, min_ratio, folded}; gaussian_curvature {min, max, mean} ((1));
         parallel_departure {max, relative, row} (rows against their best-fit circles: 0 on a
@@ -90,6 +92,7 @@ def net_metrics(f, *, axis=None, against=None, reference=None, surface=None,
         "ratio_spread_max": finite_max(ratio_spread(f)),
         "u_spread_max": finite_max(u_edge_spread(f)),
         "pleat_max": finite_max(pleat(f)) or 0.0,
+        "crease_max": finite_max(crease(f)) or 0.0,
         "jacobi_residual_max": finite_max(jacobi_residual(f), absolute=True),
         "edges": edge_length_stats(f),
         "gaussian_curvature": _stats(gaussian_curvature(f)),

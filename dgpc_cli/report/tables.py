@@ -23,7 +23,7 @@ SOLVER = {"R", "residuals", "polished"}
 #: Top-level metrics of the fabrication group (of every kind).
 FABRICATION = {
     # nets
-    "u_spread_max", "pleat_max", "parallel_departure", "mold_panel_error",
+    "u_spread_max", "pleat_max", "crease_max", "parallel_departure", "mold_panel_error",
     "panel_error_against", "handle_miss", "strain",
     # strips, flat parts
     "max_planarity", "max_deviation", "max_congruence_error", "max_strain", "max_straightness",
@@ -95,7 +95,7 @@ def metric_unit(key: str, units: str) -> str:
         return "rad"
     if last.endswith("_deg"):
         return "°"
-    if last == "pleat_max":
+    if last in ("pleat_max", "crease_max"):
         return "mean edges"
     return ""
 

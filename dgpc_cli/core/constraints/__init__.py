@@ -2,7 +2,12 @@
 
 from dgpc_cli.core.constraints.approximation import approximation
 from dgpc_cli.core.constraints.boundary import boundary
-from dgpc_cli.core.constraints.fairness import closeness, displacement_fairness, fairness
+from dgpc_cli.core.constraints.fairness import (
+    closeness,
+    displacement_fairness,
+    displacement_smoothness,
+    fairness,
+)
 from dgpc_cli.core.constraints.gpc import gpc
 from dgpc_cli.core.constraints.handles import handles
 from dgpc_cli.core.constraints.isometry import isometry
@@ -29,6 +34,7 @@ TERMS = {
     "handles": handles,
     "fairness": fairness,
     "displacement_fairness": displacement_fairness,
+    "displacement_smoothness": displacement_smoothness,
     "closeness": closeness,
 }
 

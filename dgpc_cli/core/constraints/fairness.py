@@ -7,6 +7,11 @@ and for every affine change of a flat grid, so a drag bends the net smoothly ins
 flattening it as fairness on f does. Scalings and large rotations are affine too, and the
 flexible systems (6) + (7) allow them: the ``closeness`` term ``f − f⁰`` (a far smaller weight)
 keeps the drag from drifting along them.
+
+Second differences alone leave a crease at a held vertex: their least-squares energy is a discrete
+thin plate, whose response to a point displacement (the Green's function r² log r) has a
+logarithmically unbounded curvature there. ``displacement_smoothness``, the third differences of
+the displacement, is the next order (r⁴ log r: bounded curvature), and spreads a push smoothly.
 """
 
 from __future__ import annotations
@@ -34,6 +39,20 @@ def _second_differences(f, layout):
     return phi, J
 
 
+def _third_differences(g, layout):
+    """Third differences ``g_a − 3 g_b + 3 g_c − g_d`` of ``g (|V|, 3)`` along u, then along v."""
+    vid = layout.vid
+    quads = [(vid[:-3], vid[1:-2], vid[2:-1], vid[3:]),
+             (vid[:, :-3], vid[:, 1:-2], vid[:, 2:-1], vid[:, 3:])]
+    a, b, c, d = (np.concatenate([q[k].ravel() for q in quads]) for k in range(4))
+    phi = (g[a] - 3.0 * g[b] + 3.0 * g[c] - g[d]).ravel()
+    rows = np.arange(phi.size).reshape(-1, 3)
+    J = jacobian(phi.size, layout.size,
+                 (rows, layout.f_cols(a), 1.0), (rows, layout.f_cols(b), -3.0),
+                 (rows, layout.f_cols(c), 3.0), (rows, layout.f_cols(d), -1.0))
+    return phi, J
+
+
 def fairness(x, layout):
     """Second differences of the vertices along the u-lines, then along the v-lines (xyz rows),
     §5.1."""
@@ -46,6 +65,13 @@ def displacement_fairness(x, layout, f0):
     ``(m, n, 3)``, along u then v (xyz rows): §5.1 fairness applied to a drag."""
     f, _, _ = layout.split(x)
     return _second_differences(f - np.asarray(f0, dtype=float).reshape(-1, 3), layout)
+
+
+def displacement_smoothness(x, layout, f0):
+    """Third differences of the displacement ``f − f⁰`` along u then v (xyz rows): the drag's
+    smoothness of the next order, which spreads the push of a held vertex without a crease."""
+    f, _, _ = layout.split(x)
+    return _third_differences(f - np.asarray(f0, dtype=float).reshape(-1, 3), layout)
 
 
 def closeness(x, layout, f0):
