@@ -301,7 +301,8 @@ def test_every_overlaid_outline_lies_inside_its_cell():
               "alignment": {"matrix": np.eye(2).tolist(), "translation": [0.0, 0.0]}}
              for k in range(3)]
     classes = [{"id": f"C{k}", "quantity": 1, "representative": f"S{k}",
-                "members": [f"S{k}"], "max_relative_error": 0.0} for k in range(3)]
+                "members": [f"S{k}"], "max_error": 0.0, "max_relative_error": 0.0}
+               for k in range(3)]
     fig = overlay_figure(parts, classes, "m")
     cells = [a for a in fig.axes if (a.get_gid() or "").startswith("class-")]
     assert len(cells) == 3
