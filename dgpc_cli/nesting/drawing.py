@@ -3,11 +3,13 @@ by :mod:`dgpc_cli.io.dxf` (R2010, audited, deterministic; previews in the layers
 
 Sheet (origin at the sheet's lower-left corner), layers of :data:`~dgpc_cli.io.dxf.SHEET_LAYERS`:
 
-* ``SHEET`` — the sheet's border, four lines (grey, dashed, not plotted: nothing to cut);
+* ``SHEET_BORDER`` — only with ``border``: the sheet's border, one closed polyline (plotted:
+  a CAM that is given it cuts it, so it is there only when asked for);
 * ``CUT`` — one closed outline per part, under its placement;
 * ``SCORE`` — open polylines, the rulings (bend/score lines);
-* ``LABEL`` — the part id inside the part between two score lines
-  (:mod:`dgpc_cli.nesting.labels`), or its short id beside it with a leader.
+* ``LABEL`` (``label_style`` text) or ``ENGRAVE`` (stroke) — the part id inside the part
+  between two score lines (:mod:`dgpc_cli.nesting.labels`), or its short id beside it with a
+  leader: TEXT, or single-stroke polylines an engraver follows.
 """
 
 from __future__ import annotations
@@ -22,22 +24,37 @@ MAP_LAYERS = {"PROFILE": Layer(7), "AXIS": Layer(8, "CENTER"), "SECTOR": Layer(8
               "PIECES": Layer(6), "PANELS": Layer(4), "LABEL": Layer(3), "TABLE": Layer(7)}
 
 
-def sheet_drawing(width: float, height: float, placed: list[dict]) -> tuple[Drawing, list]:
+#: ``nest --label-style``: the layer of the labels in each style.
+LABEL_LAYER = {"text": "LABEL", "stroke": "ENGRAVE"}
+
+
+def sheet_layers(border: bool, label_style: str) -> dict[str, Layer]:
+    """The layers of a sheet drawn with ``border`` and ``label_style`` (text or stroke)."""
+    names = (["SHEET_BORDER"] if border else []) + ["CUT", "SCORE", LABEL_LAYER[label_style]]
+    return {name: SHEET_LAYERS[name] for name in names}
+
+
+def sheet_drawing(width: float, height: float, placed: list[dict], *, border: bool = False,
+                  label_style: str = "text") -> tuple[Drawing, list]:
     """The drawing of one sheet and its labels; ``placed`` items have ``id``, ``outline``,
     ``score``, ``label`` and ``geodesics``, all in sheet mm, already placed."""
-    d = Drawing(SHEET_LAYERS)
-    corners = [(0.0, 0.0), (width, 0.0), (width, height), (0.0, height)]
-    for a, b in zip(corners, corners[1:] + corners[:1], strict=True):
-        d.line("SHEET", a, b)
+    d = Drawing(sheet_layers(border, label_style))
+    if border:
+        d.polyline("SHEET_BORDER", [(0.0, 0.0), (width, 0.0), (width, height), (0.0, height)],
+                   closed=True)
     for p in placed:
         d.polyline("CUT", p["outline"], closed=True)
         for line in p["score"]:
             d.polyline("SCORE", line)
     labels = place_labels(placed, width, height)
+    layer = LABEL_LAYER[label_style]
     for lb in labels:
-        d.text("LABEL", lb.text, lb.at, lb.height, lb.rotation)
+        if label_style == "stroke":
+            d.stroke_text(layer, lb.text, lb.at, lb.height, lb.rotation)
+        else:
+            d.text(layer, lb.text, lb.at, lb.height, lb.rotation)
         if lb.leader is not None:
-            d.polyline("LABEL", lb.leader)
+            d.polyline(layer, lb.leader)
     return d, labels
 
 

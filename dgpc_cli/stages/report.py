@@ -321,10 +321,18 @@ def _layer_legend(layers: dict, what: dict) -> list[tuple[str, tuple, str]]:
 
 #: What each layer of a cut sheet and of the mold map holds.
 SHEET_LEGEND = {"CUT": "outlines, cut", "SCORE": "rulings, score or bend",
-                "LABEL": "part ids", "SHEET": "sheet border, not cut"}
+                "LABEL": "part ids (text)", "ENGRAVE": "part ids, single-stroke engraving",
+                "SHEET_BORDER": "sheet border (nest --border)"}
 MAP_LEGEND = {"PROFILE": "meridian profile", "AXIS": "axis", "SECTOR": "developed sector",
               "PIECES": "mold pieces", "PANELS": "where panels are pressed",
               "LABEL": "labels", "TABLE": "table"}
+
+
+def _dxf_layers(path: Path) -> set[str]:
+    """The layers a DXF draws on (its legend lists those only)."""
+    import ezdxf
+
+    return {e.dxf.layer for e in ezdxf.readfile(path).modelspace()}
 
 
 def _sheets_page(json_path: Path) -> Page:
@@ -337,16 +345,19 @@ def _sheets_page(json_path: Path) -> Page:
     data = art.data
     W, H, unit = data["sheet"]["width"], data["sheet"]["height"], data["units"]
     count = len(data["sheets"])
-    legend = _layer_legend(SHEET_LAYERS, SHEET_LEGEND)
     figs = []
     for i, sheet in enumerate(data["sheets"]):
         png = art.file(sheet["png"]).read_bytes()
+        drawn = _dxf_layers(art.file(sheet["dxf"]))
+        legend = _layer_legend(SHEET_LAYERS, {k: v for k, v in SHEET_LEGEND.items()
+                                              if k in drawn})
         title = (f"{sheet['id']} ({i + 1} of {count}), {W:g} × {H:g} {unit}: "
                  f"{counted(len(sheet['parts']), 'part')}, "
                  f"{100 * sheet['utilization']:.1f} % used")
         figs.append((f"sheet{i + 1:02d}", f"Sheet {sheet['id']}: the cut sheet's preview "
                                           "(written by dgpc nest) with its layers.",
-                     lambda png=png, title=title: preview_figure(png, legend, title=title)))
+                     lambda png=png, title=title, legend=legend: preview_figure(png, legend,
+                                                                                title=title)))
     if "moldmap_png" in data["files"]:
         png = art.file("moldmap_png").read_bytes()
         figs.append(("moldmap", "The panel-to-mold map sheet (written by dgpc nest --mold) "
