@@ -311,3 +311,39 @@ def test_every_overlaid_outline_lies_inside_its_cell():
         for line in ax.lines:
             x, y = line.get_data()
             assert x0 < np.min(x) and np.max(x) < x1 and y0 < np.min(y) and np.max(y) < y1
+
+
+def test_strips_are_seen_from_the_side_the_net_is_seen_from(arts, tmp_path, monkeypatch):
+    """The strips' width figure looks at the strips from where the net's figures look at the
+    net (the outside of the wall), not from the other side."""
+    from dgpc_cli.report import net as net_figures
+
+    dgpc("planarize-strips", arts / "twisted", "-o", tmp_path / "strips")
+    seen = {}
+    monkeypatch.setattr(net_figures, "field_figure",
+                        lambda *a, **kw: seen.setdefault(kw["title"], kw))
+    for path, kind in ((arts / "twisted", "net"), (tmp_path / "strips", "strips")):
+        page = PAGES[kind](path.with_suffix(".json"))
+        page.figures[0][2]()
+    (net_kw,) = [kw for t, kw in seen.items() if t.startswith("strip width")]
+    (strips_kw,) = [kw for t, kw in seen.items() if t.endswith("planar-quad strips")]
+    assert net_kw["front"] is not None and strips_kw.get("front") is not None
+    assert float(np.dot(net_kw["front"], strips_kw["front"])) > 0.95
+    assert np.allclose(net_kw["up"], strips_kw["up"])
+
+
+def test_one_index_covers_net_strips_flat_parts_sheets_and_mold(arts, tmp_path):
+    """``dgpc report`` of a project's artifacts: one index showing the figures of every one of
+    them (net, strips, flat parts, sheets, mold), each linking its own page of metrics."""
+    import re
+
+    stems = [arts / n for n in ("bent", "strips", "flat", "sheets", "mold")]
+    out = dgpc("report", *stems, "-o", tmp_path / "all").stdout.split()
+    assert out[-1] == str(tmp_path / "all-index.html")
+    page = (tmp_path / "all-index.html").read_text()
+    for name in ("bent", "strips", "flat", "sheets", "mold"):
+        assert f'href="all-{name}-index.html"' in page
+        assert (tmp_path / f"all-{name}-index.html").is_file()
+        figures = re.findall(rf'src="(all-{name}-[^"]+\.png)"', page)
+        assert figures and all((tmp_path / f).is_file() for f in figures), name
+    assert 'src="all-sheets-sheet01.png"' in page and 'src="all-flat-strips.png"' in page
