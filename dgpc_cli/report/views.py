@@ -104,14 +104,26 @@ def _cells(bottom: float) -> dict[str, tuple[float, float, float, float]]:
 
 def views_figure(layers: list, *, title: str, unit: str, up=(0.0, 0.0, 1.0), front=None,
                  colour_bar: ColourBar | None = None, legend: list | None = None,
-                 plan_title: str = "plan (from above)", points=None):
+                 plan_title: str = "plan (from above)", points=None,
+                 instead_of_plan: tuple[str, list] | None = None):
     """The figure of the scene ``layers`` (:mod:`.scene`) in the three standard views, framed
     on ``points`` (default: every point of the layers) seen with ``up`` and ``front``
-    (:func:`~dgpc_cli.report.camera.standard_views`); ``legend`` a list of matplotlib handles."""
+    (:func:`~dgpc_cli.report.camera.standard_views`); ``legend`` a list of matplotlib handles.
+    ``instead_of_plan = (title, layers)``: the plan's cell shows those layers through the
+    axonometric camera instead (gid ``view-second``), framed on the same points."""
+    from dataclasses import replace
+
     pts = scene_points(layers) if points is None else np.asarray(points, float).reshape(-1, 3)
     fig = figure(*VIEWS_SIZE)
     cells = _cells(BOTTOM + (BAR_SPACE if colour_bar is not None or legend else 0.0))
-    for view in standard_views(pts, up, front, plan_title=plan_title):
+    views = standard_views(pts, up, front, plan_title=plan_title)
+    for view in views:
+        if view.name == "plan" and instead_of_plan is not None:
+            second_title, second_layers = instead_of_plan
+            second = replace(views[0], name="second", title=second_title)
+            view_axes(fig, cells["plan"], second, second_layers, pts, unit=unit, up=up,
+                      front=front)
+            continue
         view_axes(fig, cells[view.name], view, layers, pts, unit=unit, up=up, front=front)
     fig.suptitle(title, fontsize=TITLE_PT, y=0.985)
     if colour_bar is not None:

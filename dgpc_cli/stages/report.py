@@ -175,9 +175,12 @@ def _net_page(json_path: Path) -> Page:
     if against is not None:
         figs.append(("strain", "Strain against the input net of the isometric optimization "
                                "(paper Fig. 13): principal directions at the interior vertices, "
-                               "as long as their eigenvalues, over the colour of |λ1| + |λ2|.",
+                               "as long as their eigenvalues (the longest capped), over the "
+                               "colour of |λ1| + |λ2|, the handles marked; beside it the start "
+                               "shape with each handle's move.",
                      lambda: fig.strain_figure(f, against.f, title="strain against the input "
-                                                                   "net", **view)))
+                                                                   "net",
+                                               handles=net.data.get("handles"), **view)))
     if axis is not None:
         metric = _recorded_clairaut(net.metrics) or clairaut(f, axis)
         figs.append(("clairaut", "Clairaut's relation (9): r cos α minus its mean along each "
