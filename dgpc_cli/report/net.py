@@ -17,10 +17,10 @@ each adjacent quad) with the vertex's ``|λ1| + |λ2|`` and draws at every inter
 principal directions of the strain tensor D (§6.1) as a cross: one arm along each eigenvector,
 as long as its eigenvalue's magnitude, on a scale that makes the 75th percentile of the
 vertices' larger magnitudes 0.9 mean edges long (a few spikes at the corners do not shrink the
-rest to dots; longer arms are capped at 1.2 mean edges), black for stretch (λ > 0) and blue for compression
-(λ < 0). Boundary vertices have one-sided tensors and no glyph. The handles of the optimization
-are marked (magenta crosses), and the plan's cell shows the start shape (the input net, grey)
-with each handle's move from its start to its target, through the same camera.
+rest to dots; longer arms are capped at 1.2 mean edges), black for stretch (λ > 0) and blue
+for compression (λ < 0). Boundary vertices have one-sided tensors and no glyph. The handles of
+the optimization are marked (magenta crosses), and the plan's cell shows the start shape (the
+input net, grey) with each handle's move from its start to its target, through the same camera.
 """
 
 from __future__ import annotations
