@@ -213,6 +213,43 @@ def test_mold_pairing_shows_every_panel_on_both_sides_in_one_colour(arts):
     assert len(set(colours["mold"].values())) > 1
 
 
+def test_mold_pairing_colours_labels_and_no_hidden_panel(arts):
+    """Every panel of a net has its own colour; no label covers another or sticks out of its
+    view; on the mold side no panel lies behind another (the mold is unrolled)."""
+    from shapely.geometry import Polygon
+    from shapely.ops import unary_union
+
+    doc = json.loads((arts / "mold.json").read_text())
+    ids = {p["id"] for p in doc["data"]["panels"] if p["net"] == 0}
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    fig = _figure(arts / "mold", "mold", "pairing-net1")
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    ax = _axes(fig, "view-mold")
+    colours = {}
+    polys = []
+    for coll in _collections(ax, "panels") + _collections(ax, "panels-flat"):
+        for pid, rgba, path in zip(coll.get_urls(), coll.get_facecolors(), coll.get_paths(),
+                                   strict=True):
+            colours.setdefault(pid, tuple(np.round(rgba, 6)))
+            polys.append(Polygon(path.vertices[:4]))
+    assert len(set(colours.values())) == len(ids)               # no colour used twice
+    areas = sum(p.area for p in polys)
+    assert unary_union(polys).area == pytest.approx(areas, rel=1e-6)   # nothing hidden
+    for side in ("mold", "design"):
+        ax = _axes(fig, f"view-{side}")
+        frame = ax.get_window_extent(renderer)
+        boxes = [t.get_bbox_patch().get_window_extent(renderer) for t in ax.texts
+                 if (t.get_gid() or "").startswith(f"label-{side}:")]
+        assert len(boxes) >= (0.5 * len(ids) if side == "mold" else 1), side
+        for k, box in enumerate(boxes):
+            assert frame.x0 - 1 <= box.x0 and box.x1 <= frame.x1 + 1, side
+            assert frame.y0 - 1 <= box.y0 and box.y1 <= frame.y1 + 1, side
+            assert not any(box.overlaps(other) for other in boxes[k + 1:]), side
+
+
 def test_mold_pieces_mark_the_flat_panels(arts):
     doc = json.loads((arts / "mold.json").read_text())
     panels = doc["data"]["panels"]

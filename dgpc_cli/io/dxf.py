@@ -330,6 +330,7 @@ def previews(dxf: bytes, formats: tuple[str, ...] = ("svg", "png"), *,
             ax = fig.add_axes((0.01, 0.6 / height, 0.98, inner / height))
             Frontend(RenderContext(doc), MatplotlibBackend(ax), config=config).draw_layout(
                 doc.modelspace(), finalize=True)
+            fig.set_size_inches(10, height)          # the add-on resizes it to the drawing
             _preview_frame(ax, lo, hi, frame)
             if title:
                 fig.text(0.01, 0.985, title, ha="left", va="top", fontsize=12)

@@ -345,8 +345,8 @@ def _layer_legend(layers: dict, what: dict) -> list[tuple[str, tuple, str]]:
 
 #: What each layer of a cut sheet and of the mold map holds.
 SHEET_LEGEND = {"CUT": "outlines, cut", "SCORE": "rulings, score or bend",
-                "LABEL": "part ids (text)", "ENGRAVE": "part ids, single-stroke engraving",
-                "SHEET_BORDER": "sheet border (nest --border)"}
+                "LABEL": "part ids (text)", "ENGRAVE": "part ids, engraved",
+                "SHEET_BORDER": "sheet border (--border)"}
 MAP_LEGEND = {"PROFILE": "meridian profile", "AXIS": "axis", "SECTOR": "developed sector",
               "PIECES": "mold pieces", "PANELS": "where panels are pressed",
               "LABEL": "labels", "TABLE": "table"}
@@ -378,16 +378,15 @@ def _sheets_page(json_path: Path) -> Page:
         title = (f"{sheet['id']} ({i + 1} of {count}), {W:g} × {H:g} {unit}: "
                  f"{counted(len(sheet['parts']), 'part')}, "
                  f"{100 * sheet['utilization']:.1f} % used")
-        figs.append((f"sheet{i + 1:02d}", f"Sheet {sheet['id']}: the cut sheet's preview "
-                                          "(written by dgpc nest) with its layers.",
-                     lambda png=png, title=title, legend=legend: preview_figure(png, legend,
-                                                                                title=title)))
+        # the preview has its title (sheet, size, parts, use) and scale bar: none added here
+        figs.append((f"sheet{i + 1:02d}", f"Sheet {title}: the cut sheet's preview (written "
+                                          "by dgpc nest) with its layers.",
+                     lambda png=png, legend=legend: preview_figure(png, legend)))
     if "moldmap_png" in data["files"]:
         png = art.file("moldmap_png").read_bytes()
         figs.append(("moldmap", "The panel-to-mold map sheet (written by dgpc nest --mold) "
                                 "with its layers.",
-                     lambda: preview_figure(png, _layer_legend(MAP_LAYERS, MAP_LEGEND),
-                                            title="panel-to-mold map")))
+                     lambda: preview_figure(png, _layer_legend(MAP_LAYERS, MAP_LEGEND))))
     header = Header(f"{counted(len(data['placements']), 'part')} nested on "
                     f"{counted(count, 'sheet')} of {W:g} × {H:g} {unit}, "
                     f"{100 * art.metrics.get('utilization', 0.0):.1f} % used (dgpc nest).",
