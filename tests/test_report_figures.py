@@ -261,6 +261,16 @@ def test_mold_pieces_mark_the_flat_panels(arts):
     assert bool(_collections(ax, "flat-outlines")) == bool(flat)
     title = fig.texts[0].get_text()
     assert f"{len(panels) - len(flat)} curved panel" in title and f"{len(flat)} flat" in title
+    # one scale bar for every view, every view at its scale; the legend only what is drawn
+    views = [a for a in fig.axes if (a.get_gid() or "").startswith("view-")]
+    bars = [line for a in views for line in a.lines if line.get_gid() == "scale-bar"]
+    assert len(bars) == 1 and len(views) >= 2
+    per_inch = {round((a.get_xlim()[1] - a.get_xlim()[0])
+                      / (a.get_position().width * fig.get_size_inches()[0]), 9) for a in views}
+    assert len(per_inch) == 1
+    (legend,) = fig.legends
+    labels = " ".join(t.get_text() for t in legend.get_texts())
+    assert ("flat panel" in labels) == bool(flat)
 
 
 # --------------------------------------------------------------------------------------------

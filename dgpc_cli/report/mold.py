@@ -26,7 +26,7 @@ import numpy as np
 from .camera import model_frame, outward_front, outward_normals, same_scale, standard_views
 from .render import figure
 from .scene import Polygons, Segments, grid_quads, scene_points
-from .views import LABEL_PT, TITLE_PT, view_axes
+from .views import LABEL_PT, TITLE_PT, one_scale, view_axes
 from .words import counted
 
 __all__ = ["PAIRING_SIZE", "PIECES_SIZE", "pairing_figure", "panel_colours", "pieces_figure",
@@ -279,19 +279,12 @@ def pieces_figure(nets: list[np.ndarray], panels: list[dict], pieces: list[dict]
     pts = scene_points(layers)
     front = outward_front(layers[0].polys)
     view = standard_views(pts, front=front)[2]            # the elevation: the sector flat on
-    ax = view_axes(fig, (0.01, 0.12, 0.3, 0.76), view, layers, pts, unit=unit, front=front)
-    ax.set_gid("view-pieces")
-    ax.set_title(f"mold sector ({sector_deg:.3g}°), {counted(len(pieces), 'piece')}",
-                 fontsize=LABEL_PT + 1)
-    for p in pieces:
-        mid = mold_grid(r, h, p["rows"], (0.0, sector_deg), 2).reshape(-1, 3).mean(axis=0)
-        x, y = view.project(mid)
-        ax.text(x, y, p["id"], ha="center", va="center", fontsize=LABEL_PT, zorder=10,
-                gid=f"piece-label:{p['id']}")
+    cells = [((0.01, 0.12, 0.3, 0.76), view, layers, pts, front)]
     count = len(nets)
     ncol = 1 if count == 1 else 2
     nrow = math.ceil(count / ncol)
     width, height = 0.66 / ncol, 0.8 / nrow
+    any_flat = False
     for k, f in enumerate(nets):
         f = np.asarray(f, float)
         mine = [p for p in panels if p["net"] == k]
@@ -307,24 +300,47 @@ def pieces_figure(nets: list[np.ndarray], panels: list[dict], pieces: list[dict]
                          ids=[p["id"] for p, q in zip(mine, quads, strict=True)
                               for _ in range(len(q))])
         flat = [g for p in mine if p["flat"] for g in [grids[p["id"]]]]
-        layers = [layer]
+        design_layers = [layer]
         if flat:
-            layers.append(Segments(np.concatenate([_outline(g) for g in flat]), FLAT_EDGE,
-                                   "flat-outlines", linewidth=1.2))
-        pts = f.reshape(-1, 3)
-        front = outward_front(grid_quads(f))
-        view = standard_views(pts, front=front)[0]
+            any_flat = True
+            design_layers.append(Segments(np.concatenate([_outline(g) for g in flat]),
+                                          FLAT_EDGE, "flat-outlines", linewidth=1.2))
+        net_pts = f.reshape(-1, 3)
+        net_front = outward_front(grid_quads(f))
         row, col = divmod(k, ncol)
         rect = (0.33 + col * width, 0.12 + (nrow - 1 - row) * height, width - 0.01,
                 height - 0.01)
-        ax = view_axes(fig, rect, view, layers, pts, unit=unit, front=front)
-        ax.set_gid(f"view-design-{k + 1}")
-        n_flat = sum(p["flat"] for p in mine)
-        ax.set_title(f"{names[k]}: {len(mine)} panels, {n_flat} flat", fontsize=LABEL_PT)
+        cells.append((rect, standard_views(net_pts, front=net_front)[0], design_layers,
+                      net_pts, net_front))
+    # every view at one scale, one scale bar (under the sector) for all
+    frames = one_scale(fig, [c[0] for c in cells],
+                       [model_frame(v, p, front=fr) for _, v, _, p, fr in cells])
+    for k, ((rect, v, lay, p, fr), frame) in enumerate(zip(cells, frames, strict=True)):
+        ax = view_axes(fig, rect, v, lay, p, unit=unit, front=fr, frame=frame, bar=k == 0)
+        if k == 0:
+            ax.set_gid("view-pieces")
+            ax.set_title(f"sector {sector_deg:.3g}°, {counted(len(pieces), 'piece')}",
+                         fontsize=LABEL_PT + 1)
+            for piece in pieces:
+                mid = mold_grid(r, h, piece["rows"], (0.0, sector_deg),
+                                2).reshape(-1, 3).mean(axis=0)
+                x, y = v.project(mid)
+                ax.text(x, y, piece["id"], ha="center", va="center", fontsize=LABEL_PT,
+                        zorder=10, gid=f"piece-label:{piece['id']}")
+            continue
+        mine = [q for q in panels if q["net"] == k - 1]
+        ax.set_gid(f"view-design-{k}")
+        n_flat = sum(q["flat"] for q in mine)
+        ax.set_title(f"{names[k - 1]}: {len(mine)} panels, {n_flat} flat", fontsize=LABEL_PT)
     legend = [Patch(facecolor=colours[p["id"]], edgecolor="0.3", label=f"piece {p['id']}")
               for p in pieces[:8]]
-    legend.append(Line2D([], [], color=FLAT_EDGE, lw=1.5, label="flat panel (K ≈ 0): no mold"))
+    if any_flat:                                          # only what is drawn
+        legend.append(Line2D([], [], color=FLAT_EDGE, lw=1.5,
+                             label="flat panel (K ≈ 0): no mold"))
+    if not covered.all():
+        legend.append(Patch(facecolor=WHITE, edgecolor="0.3", label="mold rows no panel needs"))
     fig.legend(handles=legend, loc="lower center", bbox_to_anchor=(0.5, 0.005),
                ncol=min(len(legend), 5), fontsize=LABEL_PT)
+    title = f"{title} (every view at one scale)"
     fig.suptitle(title, fontsize=TITLE_PT, y=0.985)
     return fig

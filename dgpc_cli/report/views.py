@@ -20,7 +20,7 @@ from .camera import model_frame, standard_views
 from .render import figure
 from .scene import draw, scene_points
 
-__all__ = ["VIEWS_SIZE", "ColourBar", "nice_length", "view_axes", "views_figure"]
+__all__ = ["VIEWS_SIZE", "ColourBar", "nice_length", "one_scale", "view_axes", "views_figure"]
 
 #: Size of the figure (inches).
 VIEWS_SIZE = (10.0, 6.4)
@@ -74,10 +74,10 @@ def scale_bar(ax, frame, unit: str) -> None:
 
 
 def view_axes(fig, rect, view, layers: list, points, *, unit: str, up=(0.0, 0.0, 1.0),
-              front=None, frame=None):
+              front=None, frame=None, bar: bool = True):
     """Axes at ``rect`` (figure coordinates; gid ``view-<name>``) showing ``layers`` through
     ``view``, spanning exactly the view's frame on ``points`` (or ``frame``; equal scales),
-    with the view's title above and a scale bar in ``unit`` under them."""
+    with the view's title above and (``bar``) a scale bar in ``unit`` under them."""
     ax = fig.add_axes(rect)
     ax.set_gid(f"view-{view.name}")
     draw(ax, view, layers)
@@ -88,8 +88,24 @@ def view_axes(fig, rect, view, layers: list, points, *, unit: str, up=(0.0, 0.0,
     ax.set_aspect("equal", adjustable="box", anchor="C")
     ax.set_axis_off()
     ax.set_title(view.title, fontsize=LABEL_PT, pad=3)
-    scale_bar(ax, frame, unit)
+    if bar:
+        scale_bar(ax, frame, unit)
     return ax
+
+
+def one_scale(fig, rects: list, frames: list) -> list[tuple[float, float, float, float]]:
+    """The ``frames`` widened about their centres so that, drawn into the axes ``rects``
+    (figure coordinates) of ``fig``, they all have one scale (the smallest that shows each
+    whole): one scale bar then speaks for every view."""
+    W, H = fig.get_size_inches()
+    per_inch = max(max((f[1] - f[0]) / (r[2] * W), (f[3] - f[2]) / (r[3] * H))
+                   for f, r in zip(frames, rects, strict=True))
+    out = []
+    for (x0, x1, y0, y1), r in zip(frames, rects, strict=True):
+        cx, cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+        hw, hh = 0.5 * per_inch * r[2] * W, 0.5 * per_inch * r[3] * H
+        out.append((cx - hw, cx + hw, cy - hh, cy + hh))
+    return out
 
 
 def _cells(bottom: float) -> dict[str, tuple[float, float, float, float]]:
