@@ -5,6 +5,7 @@ import csv
 import json
 
 import ezdxf
+import ezdxf.bbox
 import numpy as np
 import pytest
 from cli_helpers import dgpc, metrics
@@ -235,6 +236,13 @@ def test_mold_map(sample):
     assert "flat panels" in table
     assert {e.dxf.layer for e in msp.query("TEXT")} == {"LABEL", "TABLE"}
     assert doc.layers.get("LABEL").color == 3                # green, readable on white
+    # every text of the map, the table's included, readable in its preview: 12 px high or more
+    from PIL import Image
+
+    png = Image.open(art.file("moldmap_png"))
+    drawn = ezdxf.bbox.extents(msp, fast=False)
+    px_per_mm = png.size[0] / (drawn.extmax.x - drawn.extmin.x)
+    assert min(e.dxf.height for e in msp.query("TEXT")) * px_per_mm >= 12
     # where the curved panels are pressed: per band of mold rows a label, and its lower and
     # upper edge across the developed sector (s = meridian arc length) drawn once
     curved = [p for p in mold["panels"] if p["piece"] is not None]

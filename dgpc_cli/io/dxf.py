@@ -300,12 +300,13 @@ def _dxf_bytes(drawing: Drawing, source) -> bytes:
 
 
 def previews(dxf: bytes, formats: tuple[str, ...] = ("svg", "png"), *,
-             title: str | None = None, frame: tuple[float, float] | None = None
-             ) -> tuple[bytes, ...]:
+             title: str | None = None, frame: tuple[float, float] | None = None,
+             width: float = 10.0) -> tuple[bytes, ...]:
     """Previews of the DXF bytes ``dxf`` in ``formats`` (svg, png), rendered with ezdxf's
     drawing add-on in the layers' colours on white, ``title`` above, a scale bar in mm under
     the drawing, and with ``frame = (width, height)`` the sheet's outline from the origin (one
-    dashed grey path, drawn in the preview only); no metadata that changes between runs."""
+    dashed grey path, drawn in the preview only), ``width`` inches wide at 100 dpi; no
+    metadata that changes between runs."""
     import matplotlib
 
     matplotlib.use("Agg", force=False)
@@ -322,18 +323,19 @@ def previews(dxf: bytes, formats: tuple[str, ...] = ("svg", "png"), *,
     lo, hi = _preview_limits(doc, frame)
     # the figure as wide as the page, as tall as the drawing needs (within 3 and 10 inches),
     # with bands for the title (0.5 in) and the scale bar (0.6 in)
-    inner = min(max(9.8 * float(hi[1] - lo[1]) / float(hi[0] - lo[0]), 1.9), 8.9)
+    inner = min(max(0.98 * width * float(hi[1] - lo[1]) / float(hi[0] - lo[0]), 1.9),
+                0.9 * width)
     height = inner + 0.6 + (0.5 if title else 0.1)
     with plt.rc_context({"svg.hashsalt": "dgpc", "svg.fonttype": "path"}):
-        fig = plt.figure(figsize=(10, height))
+        fig = plt.figure(figsize=(width, height))
         try:
             ax = fig.add_axes((0.01, 0.6 / height, 0.98, inner / height))
             Frontend(RenderContext(doc), MatplotlibBackend(ax), config=config).draw_layout(
                 doc.modelspace(), finalize=True)
-            fig.set_size_inches(10, height)          # the add-on resizes it to the drawing
-            _preview_frame(ax, lo, hi, frame)
+            fig.set_size_inches(width, height)       # the add-on resizes it to the drawing
+            _preview_frame(ax, lo, hi, frame, fontsize=width)
             if title:
-                fig.text(0.01, 0.985, title, ha="left", va="top", fontsize=12)
+                fig.text(0.01, 0.985, title, ha="left", va="top", fontsize=1.2 * width)
             for fmt in formats:
                 buf = io.BytesIO()
                 fig.savefig(buf, format=fmt, dpi=100, metadata=meta[fmt])
@@ -357,7 +359,8 @@ def _preview_limits(doc, frame: tuple[float, float] | None) -> tuple[np.ndarray,
     return lo - pad, hi + pad
 
 
-def _preview_frame(ax, lo, hi, frame: tuple[float, float] | None) -> None:
+def _preview_frame(ax, lo, hi, frame: tuple[float, float] | None, fontsize: float = 10.0
+                   ) -> None:
     """The preview's limits ``lo``, ``hi``, the sheet ``frame`` as one dashed rectangle (the
     DXF has no border unless asked) and a round scale bar under the drawing, in mm."""
     from matplotlib.patches import Rectangle
@@ -377,7 +380,7 @@ def _preview_frame(ax, lo, hi, frame: tuple[float, float] | None) -> None:
     ax.plot([x0, x0 + length], [0.0, 0.0], color="k", lw=2.5, solid_capstyle="butt",
             clip_on=False, gid="scale-bar",
             transform=offset_copy(ax.get_xaxis_transform(), fig, y=-8, units="points"))
-    ax.text(x0 + 0.5 * length, 0.0, f"{length:g} mm", ha="center", va="top", fontsize=10,
+    ax.text(x0 + 0.5 * length, 0.0, f"{length:g} mm", ha="center", va="top", fontsize=fontsize,
             clip_on=False,
             transform=offset_copy(ax.get_xaxis_transform(), fig, y=-12, units="points"))
 

@@ -251,7 +251,8 @@ def mold_map(mold, scale: float) -> tuple[bytes, bytes]:
     k = scale * mm_per_unit(mold.units)
     dxf = mold_map_drawing(k * mold.r, k * mold.h, mold.data["sector"]["angle_deg"],
                            mold.data["pieces"], mold.data["panels"]).to_bytes("mold map")
-    (png,) = previews(dxf, ("png",), title="panel-to-mold map (mm)")
+    # twice as wide as a sheet's preview: the table's ids are read there
+    (png,) = previews(dxf, ("png",), title="panel-to-mold map (mm)", width=20.0)
     return dxf, png
 
 
