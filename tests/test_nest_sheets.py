@@ -214,6 +214,11 @@ def test_parts_csv_obj_and_previews(sample):
         assert b"<svg" in art.file(rec["svg"]).read_bytes()[:500]
         colours = _colours(png)                  # cut red, score blue, labels green, sheet grey
         assert all(colours[c] > 50 for c in ("red", "blue", "green", "grey")), colours
+        # the sheet outlined in the preview by one path (not a path per dash of a border),
+        # with a scale bar
+        svg = art.file(rec["svg"]).read_bytes()
+        assert svg.count(b'id="sheet-frame"') == 1 and svg.count(b'id="scale-bar"') == 1
+        assert len(svg) < 300_000, len(svg)
     assert art.file("moldmap_png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
