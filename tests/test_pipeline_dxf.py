@@ -71,6 +71,9 @@ def test_gehry_profile_is_drawn_in_mm(pipeline_run):
         assert abs(float(np.ptp(h)) - height_mm) <= 1e-6, path
     fig = profile_figure(mold.r, mold.h, unit=mold.units, title="profile")
     assert (fig.axes[0].get_xlabel(), fig.axes[0].get_ylabel()) == ("r [m]", "h [m]")
-    html = (d / "mold-report-index.html").read_text()
+    html = (d / "report-mold-index.html").read_text()
+    overview = (d / "report-index.html").read_text()         # one page: facade to mold
+    for name in ("facade-1", "strips", "flat", "sheets", "mold"):
+        assert f'href="report-{name}-index.html"' in overview, name
     assert "lengths in <b>m</b>" in html and "(r, h in m)" in html
     assert re.search(r"<tr><td>height</td><td[^>]*>5\.[0-9]+</td><td>m</td></tr>", html)
