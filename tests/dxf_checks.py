@@ -1,6 +1,11 @@
 """Independent checks of a DXF that goes to a CAM as it is (issue 14): read back by ezdxf and by
 a second reader (dxfgrabber), geometry checked with shapely.
 
+What a CAM needs: every layer plotted (a CAM that skips unplotted layers would still cut them
+where another does not), closed outlines on CUT and on SHEET_BORDER (only with ``nest
+--border``), single open strokes on ENGRAVE (``--label-style stroke``) crossing no cut or score
+line, header extents equal to the drawing's as ezdxf measures them.
+
 A segment is a pair of end points rounded to 1e-6 mm; a text's box comes from ezdxf's own font
 measurement (``ezdxf.bbox`` of the text turned upright, turned back about its alignment point),
 not from dgpc's estimate.
@@ -93,21 +98,32 @@ def check_cam_ready(path) -> dict:
     for polylines in (lines_ez, lines_gr):
         assert segment_faults(polylines) == (0, 0), path
         for layer, _, closed in polylines:
-            if layer == "CUT":
-                assert closed, path                 # CUT: closed outlines only
-            if layer == "SHEET":
-                assert not closed, path             # the sheet border is nothing to cut
-    # extents set (not ezdxf's ±1e20 default) and holding every point
+            if layer in ("CUT", "SHEET_BORDER"):
+                assert closed, path                 # CUT, the border: closed outlines only
+            if layer == "ENGRAVE":
+                assert not closed, path             # single strokes, followed once
+    # every layer is plotted (a CAM that skips unplotted layers would still cut them)
+    assert all(layer.dxf.plot for layer in doc.layers if layer.dxf.name != "Defpoints"), path
+    assert "SHEET" not in doc.layers, path          # the old unplotted border layer
+    assert len([1 for layer, _, _ in lines_ez if layer == "SHEET_BORDER"]) <= 1, path
+    # extents set (not ezdxf's ±1e20 default): those of the drawing as ezdxf measures it
     lo = np.array(grabbed.header["$EXTMIN"][:2])
     hi = np.array(grabbed.header["$EXTMAX"][:2])
     assert np.array_equal(lo, np.array(doc.header["$EXTMIN"][:2]))
     pts = np.concatenate([p for _, p, _ in lines_gr])
     assert np.all(lo <= pts.min(axis=0) + 1e-9) and np.all(pts.max(axis=0) <= hi + 1e-9), path
-    assert np.all(hi - lo < 1e19), path
+    drawn = bbox.extents(doc.modelspace(), fast=False)
+    size = float(np.max(hi - lo))
+    assert np.allclose(lo, [drawn.extmin.x, drawn.extmin.y], atol=1e-6 * size), path
+    assert np.allclose(hi, [drawn.extmax.x, drawn.extmax.y], atol=1e-6 * size), path
     # no label's text box crosses a cut or score line
     cuts = [LineString(np.concatenate([p, p[:1]]) if c else p)
             for layer, p, c in lines_ez if layer in ("CUT", "SCORE")]
     for text, box in text_boxes(doc):
         assert not any(box.intersects(line) for line in cuts), (path, text)
+    # no engraved letter crosses a cut or score line (a leader, one straight segment, does)
+    for layer, p, _ in lines_ez:
+        if layer == "ENGRAVE" and len(p) > 2:
+            assert not any(LineString(p).intersects(line) for line in cuts), path
     counts = Counter(f"{e.dxf.layer}:{e.dxftype()}" for e in doc.modelspace())
     return dict(sorted(counts.items()))

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from cli_helpers import dgpc
 from dxf_checks import check_cam_ready, grabber_polylines, segment_faults
+from ezdxf import bbox
 from shapely.geometry import LineString, Polygon
 
 from dgpc_cli.errors import DgpcError
@@ -50,8 +51,12 @@ def test_header_extents_hold_lines_and_text(tmp_path):
     path.write_bytes(d.to_bytes())
     doc = ezdxf.readfile(path)
     lo, hi = np.array(doc.header["$EXTMIN"][:2]), np.array(doc.header["$EXTMAX"][:2])
-    box = text_box("S-v01", 10.0, (50, 40))
-    assert np.allclose(lo, [0, 0]) and np.allclose(hi, [100, box[:, 1].max()])
+    (text,) = doc.modelspace().query("TEXT")
+    drawn = bbox.extents([text], fast=False)           # the text as its font draws it
+    assert np.allclose(lo, [0, 0]) and np.allclose(hi, [100, drawn.extmax.y])
+    # not dgpc's wider estimate of the text's box (the mold map's extents were half again
+    # as wide as its drawing)
+    assert hi[1] < text_box("S-v01", 10.0, (50, 40))[:, 1].max() - 0.5
     check_cam_ready(path)
 
 

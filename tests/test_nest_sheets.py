@@ -5,6 +5,7 @@ import csv
 import json
 
 import ezdxf
+import ezdxf.bbox
 import numpy as np
 import pytest
 from cli_helpers import dgpc, metrics
@@ -51,7 +52,7 @@ def _read_sheet(path):
     msp = doc.modelspace()
     return doc, {
         "sheet": [(np.array(e.get_points("xy")), e.closed)
-                  for e in msp.query("LWPOLYLINE[layer=='SHEET']")],
+                  for e in msp.query("LWPOLYLINE[layer=='SHEET_BORDER']")],
         "cut": [(np.array(e.get_points("xy")), e.closed)
                 for e in msp.query("LWPOLYLINE[layer=='CUT']")],
         "score": [(np.array(e.get_points("xy")), e.closed)
@@ -70,12 +71,9 @@ def test_sheet_dxfs_pass_independent_checks(sample):
     for s, rec in enumerate(art.data["sheets"]):
         check_cam_ready(art.file(rec["dxf"]))               # R2010, mm, audit, extents ...
         doc, ents = _read_sheet(art.file(rec["dxf"]))
-        assert len(ents["sheet"]) == 4 and not any(closed for _, closed in ents["sheet"])
-        border = np.concatenate([pts for pts, _ in ents["sheet"]])
-        lo, hi = border.min(axis=0), border.max(axis=0)
-        assert np.allclose(lo, 0) and np.allclose(hi, SHEET)
-        layer = doc.layers.get("SHEET")
-        assert layer.dxf.plot == 0 and layer.dxf.linetype == "DASHED" and layer.color == 8
+        # no border unless --border asks: a CAM would cut it
+        assert {layer.dxf.name for layer in doc.layers} == {"0", "Defpoints", "CUT", "SCORE",
+                                                             "LABEL"}
         assert [doc.layers.get(n).color for n in ("CUT", "SCORE", "LABEL")] == [1, 5, 3]
         inner = box(MARGIN, MARGIN, SHEET[0] - MARGIN, SHEET[1] - MARGIN)
         polys = []
@@ -106,6 +104,62 @@ def test_sheet_dxfs_pass_independent_checks(sample):
     assert sorted(seen) == sorted(flat)                      # each part exactly once
     m = metrics(folder / "sh")
     assert m["sheet_count"] == art.data["sheet_count"] and m["n_parts"] == len(flat)
+
+
+def test_border_stroke_labels_and_router_spacing(sample, tmp_path):
+    """--border: the sheet's border, one closed polyline on its own plotted layer; --label-style
+    stroke: the ids as single-stroke polylines on ENGRAVE, inside each label's box; --tool
+    router: the spacing is the bit's diameter plus a web, the parameters say so."""
+    from dgpc_cli.io.dxf import text_box
+
+    folder, flat_stem, _ = sample
+    out = tmp_path / "routed"
+    dgpc("nest", flat_stem, "--sheet", f"{SHEET[0]:g}x{SHEET[1]:g}", "--scale", SCALE,
+         "--tool", "router", "--tool-diameter", "5mm", "--border", "--label-style", "stroke",
+         "-o", out)
+    art = read_sheets(out)
+    params = json.loads(out.with_suffix(".json").read_text())["parameters"]
+    assert (params["tool"], params["tool_diameter"], params["spacing"], params["margin"]) == \
+        ("router", 5.0, 7.0, 20.0)
+    assert (params["border"], params["label_style"]) == (True, "stroke")
+    assert art.data["sheet"]["spacing"] == 7.0
+    for rec in art.data["sheets"]:
+        check_cam_ready(art.file(rec["dxf"]))
+        doc, ents = _read_sheet(art.file(rec["dxf"]))
+        assert doc.layers.get("SHEET_BORDER").dxf.plot == 1
+        ((border, closed),) = ents["sheet"]
+        assert closed and np.allclose(border.min(axis=0), 0) and \
+            np.allclose(border.max(axis=0), SHEET)
+        assert not ents["label"] and "LABEL" not in doc.layers
+        strokes = [np.array(e.get_points("xy")) for e in
+                   doc.modelspace().query("LWPOLYLINE[layer=='ENGRAVE']")]
+        assert strokes and all(len(p) >= 2 for p in strokes)
+        boxes = [Polygon(text_box(lb["text"], lb["height"], lb["at"], lb["rotation"])
+                         ).buffer(1e-6)
+                 for lb in (p["label"] for p in art.data["placements"]
+                            if p["sheet"] == rec["index"])]
+        homes = set()
+        for p in strokes:                  # a letter inside a label's box, or a leader
+            inside = [k for k, b in enumerate(boxes) if all(b.covers(Point(*q)) for q in p)]
+            assert inside or len(p) == 2, p
+            homes.update(inside)
+        assert homes == set(range(len(boxes)))           # every label lettered
+        polys = [Polygon(pts) for pts, _ in ents["cut"]]
+        for i in range(len(polys)):
+            for j in range(i + 1, len(polys)):
+                assert polys[i].distance(polys[j]) >= 7.0 - 1e-9
+
+
+@pytest.mark.parametrize("extra, option", [
+    (["--tool", "router", "--spacing", "5"], "--spacing"),      # below the 6 mm bit
+    (["--tool", "laser", "--tool-diameter", "6"], "--tool-diameter"),
+    (["--tool", "router", "--kerf", "0.2"], "--kerf"),
+])
+def test_a_tool_contradiction_is_a_usage_error(sample, tmp_path, extra, option):
+    _, flat_stem, _ = sample
+    result = dgpc("nest", flat_stem, "--sheet", "700x500", "--scale", SCALE, *extra, "-o",
+                  tmp_path / "x", expect=2)
+    assert option in result.stderr and not list(tmp_path.iterdir())
 
 
 def _colours(png: bytes) -> dict[str, int]:
@@ -160,6 +214,11 @@ def test_parts_csv_obj_and_previews(sample):
         assert b"<svg" in art.file(rec["svg"]).read_bytes()[:500]
         colours = _colours(png)                  # cut red, score blue, labels green, sheet grey
         assert all(colours[c] > 50 for c in ("red", "blue", "green", "grey")), colours
+        # the sheet outlined in the preview by one path (not a path per dash of a border),
+        # with a scale bar
+        svg = art.file(rec["svg"]).read_bytes()
+        assert svg.count(b'id="sheet-frame"') == 1 and svg.count(b'id="scale-bar"') == 1
+        assert len(svg) < 300_000, len(svg)
     assert art.file("moldmap_png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
@@ -182,6 +241,13 @@ def test_mold_map(sample):
     assert "flat panels" in table
     assert {e.dxf.layer for e in msp.query("TEXT")} == {"LABEL", "TABLE"}
     assert doc.layers.get("LABEL").color == 3                # green, readable on white
+    # every text of the map, the table's included, readable in its preview: 12 px high or more
+    from PIL import Image
+
+    png = Image.open(art.file("moldmap_png"))
+    drawn = ezdxf.bbox.extents(msp, fast=False)
+    px_per_mm = png.size[0] / (drawn.extmax.x - drawn.extmin.x)
+    assert min(e.dxf.height for e in msp.query("TEXT")) * px_per_mm >= 12
     # where the curved panels are pressed: per band of mold rows a label, and its lower and
     # upper edge across the developed sector (s = meridian arc length) drawn once
     curved = [p for p in mold["panels"] if p["piece"] is not None]

@@ -2,13 +2,14 @@
 dxfgrabber: CUT closed, no label over a cut or score line, no duplicate or zero-length segment,
 extents set, audit clean), and the Gehry facade declared in metres is drawn in millimetres."""
 
+import json
 import re
 
 import ezdxf
 import numpy as np
 import pytest
 from dxf_checks import check_cam_ready, text_boxes
-from shapely.geometry import Polygon
+from shapely.geometry import LineString, Point, Polygon
 
 from dgpc_cli.io.flat import read_flat
 from dgpc_cli.io.mold import read_mold
@@ -27,10 +28,27 @@ def test_every_dxf_of_the_pipelines_is_cam_ready(pipeline_run, name):
     for path in sorted(d.glob("*.dxf")):
         check_cam_ready(path)
     parts = {p["id"]: p for p in read_flat(d / "flat").parts}
+    params = json.loads((d / "sheets.json").read_text())["parameters"]
+    if name == "timber-cladding":              # timber: a router, ids engraved as strokes
+        assert (params["tool"], params["spacing"], params["label_style"]) == \
+            ("router", 8.0, "stroke")
     for sheet in sheets.data["sheets"]:
         doc = ezdxf.readfile(sheets.file(sheet["dxf"]))
         cut = [Polygon(e.get_points("xy")) for e in doc.modelspace().query(
             "LWPOLYLINE[layer=='CUT']")]
+        assert "SHEET_BORDER" not in doc.layers           # no border: nest --border not given
+        if params["label_style"] == "stroke":
+            # every part's id engraved inside its own outline, where its label record says
+            strokes = [LineString(e.get_points("xy")) for e in doc.modelspace().query(
+                "LWPOLYLINE[layer=='ENGRAVE']")]
+            for pl in sheets.data["placements"]:
+                if pl["sheet"] != sheet["index"] or pl["label"]["leader"]:
+                    continue
+                (home,) = [poly for poly in cut if poly.contains(Point(pl["label"]["at"]))]
+                near = [s for s in strokes if s.distance(Point(pl["label"]["at"]))
+                        <= len(pl["part"]) * pl["label"]["height"]]
+                assert near and all(home.contains(s) for s in near), pl["part"]
+            continue
         labels = text_boxes(doc)
         # every part labelled with its full id, inside its own outline
         assert sorted(t for t, _ in labels) == sheet["parts"]
@@ -53,6 +71,9 @@ def test_gehry_profile_is_drawn_in_mm(pipeline_run):
         assert abs(float(np.ptp(h)) - height_mm) <= 1e-6, path
     fig = profile_figure(mold.r, mold.h, unit=mold.units, title="profile")
     assert (fig.axes[0].get_xlabel(), fig.axes[0].get_ylabel()) == ("r [m]", "h [m]")
-    html = (d / "mold-report-index.html").read_text()
+    html = (d / "report-mold-index.html").read_text()
+    overview = (d / "report-index.html").read_text()         # one page: facade to mold
+    for name in ("facade-1", "strips", "flat", "sheets", "mold"):
+        assert f'href="report-{name}-index.html"' in overview, name
     assert "lengths in <b>m</b>" in html and "(r, h in m)" in html
     assert re.search(r"<tr><td>height</td><td[^>]*>5\.[0-9]+</td><td>m</td></tr>", html)

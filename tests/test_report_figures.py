@@ -118,25 +118,74 @@ def test_strain_glyphs_at_every_interior_vertex_as_long_as_their_eigenvalues():
     u, v = np.meshgrid(np.linspace(0, 4, 9), np.linspace(0, 3, 7), indexing="ij")
     f0 = np.stack([u, v, 0.1 * np.sin(u) * np.cos(v)], axis=-1)
     f = f0 * np.array([1.02, 0.99, 1.0]) + 1e-3 * rng.standard_normal(f0.shape)
-    with style():
-        fig = strain_figure(f, f0, title="strain", unit="m")
+    with style():          # up y, seen from z: the elevation shows the model's own plane
+        fig = strain_figure(f, f0, title="strain", unit="m", up=(0.0, 1.0, 0.0),
+                            front=(0.0, 0.0, 1.0))
     m, n = f.shape[:2]
     lam1, lam2, _ = principal_strains(strain_tensor(f, f0))
-    for view in ("axonometric", "plan", "elevation"):
+    for view in ("axonometric", "elevation"):
         ax = _axes(fig, f"view-{view}")
         for k in (1, 2):
             (coll,) = _collections(ax, f"strain-glyphs-{k}")
             segs = np.asarray(coll.get_segments())
             assert len(segs) == (m - 2) * (n - 2)
-    # arm lengths in the plan (the model is nearly flat in z) ∝ |λ|, one scale for both arms
-    ax = _axes(fig, "view-plan")
+    # arm lengths in the elevation ∝ |λ|, one scale for both arms, the longest capped
+    ax = _axes(fig, "view-elevation")
     lengths = [np.linalg.norm(np.diff(np.asarray(_collections(ax, f"strain-glyphs-{k}")[0]
                                                  .get_segments()), axis=1)[:, 0], axis=-1)
                for k in (1, 2)]
     mags = [np.abs(lam[1:-1, 1:-1]).ravel() for lam in (lam1, lam2)]
-    scale = lengths[0].max() / mags[0].max()
+    ratio = np.concatenate(lengths) / np.concatenate(mags)
+    scale, cap = np.median(ratio), max(x.max() for x in lengths)
     for length, mag in zip(lengths, mags, strict=True):
-        np.testing.assert_allclose(length, scale * mag, rtol=0.05, atol=1e-3 * lengths[0].max())
+        np.testing.assert_allclose(length, np.minimum(scale * mag, cap), rtol=0.05,
+                                   atol=1e-3 * cap)
+
+
+def _plane_nets(spike: float = 0.0):
+    u, v = np.meshgrid(np.linspace(0, 4, 9), np.linspace(0, 3, 7), indexing="ij")
+    f0 = np.stack([u, v, 0.0 * u], axis=-1)
+    f = f0 * np.array([1.01, 1.0, 1.0])
+    f[4, 3, 0] += spike                                  # one vertex far off: a strain spike
+    return f0, f
+
+
+def test_strain_glyphs_are_readable_beside_a_spike():
+    """One spike of strain does not shrink every other glyph to a dot: the typical arm is a
+    good part of an edge long, and drawn thick enough to see."""
+    from dgpc_cli.report.net import strain_figure
+
+    f0, f = _plane_nets(spike=0.3)
+    with style():          # up y, seen from z: the elevation shows the model's own plane
+        fig = strain_figure(f, f0, title="strain", unit="m", up=(0.0, 1.0, 0.0),
+                            front=(0.0, 0.0, 1.0))
+    (coll,) = _collections(_axes(fig, "view-elevation"), "strain-glyphs-1")
+    segs = np.asarray(coll.get_segments())
+    lengths = np.linalg.norm(segs[:, 1] - segs[:, 0], axis=-1)
+    assert np.median(lengths) >= 0.5 * 0.5              # half of an edge (0.5 m) at least
+    assert coll.get_linewidths()[0] >= 1.2
+
+
+def test_strain_figure_marks_the_handles_and_shows_the_start_shape():
+    from dgpc_cli.report.net import strain_figure
+
+    f0, f = _plane_nets()
+    f[-1, -1] += (0.0, 0.0, 0.8)                           # a handle's drag
+    with style():
+        fig = strain_figure(f, f0, title="strain", unit="m",
+                            handles={"ids": [0, f.shape[0] * f.shape[1] - 1]})
+    for view in ("axonometric", "elevation"):
+        (marks,) = _collections(_axes(fig, f"view-{view}"), "handles")
+        assert len(marks.get_segments()) == 2 * 3           # a three-armed cross each
+    start = _axes(fig, "view-second")
+    assert start.get_title() == "start shape (input net)"
+    (edges,) = _collections(start, "start-net")
+    m, n = f.shape[:2]
+    assert len(edges.get_segments()) == (m - 1) * n + m * (n - 1)
+    (moves,) = _collections(start, "handle-moves")
+    lengths = [np.linalg.norm(s[1] - s[0]) for s in moves.get_segments()]
+    assert lengths[0] == pytest.approx(0.0, abs=1e-12) and lengths[1] > 0.1
+    assert not [a for a in fig.axes if a.get_gid() == "view-plan"]   # no rims over each other
 
 
 # --------------------------------------------------------------------------------------------
@@ -164,6 +213,43 @@ def test_mold_pairing_shows_every_panel_on_both_sides_in_one_colour(arts):
     assert len(set(colours["mold"].values())) > 1
 
 
+def test_mold_pairing_colours_labels_and_no_hidden_panel(arts):
+    """Every panel of a net has its own colour; no label covers another or sticks out of its
+    view; on the mold side no panel lies behind another (the mold is unrolled)."""
+    from shapely.geometry import Polygon
+    from shapely.ops import unary_union
+
+    doc = json.loads((arts / "mold.json").read_text())
+    ids = {p["id"] for p in doc["data"]["panels"] if p["net"] == 0}
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    fig = _figure(arts / "mold", "mold", "pairing-net1")
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    ax = _axes(fig, "view-mold")
+    colours = {}
+    polys = []
+    for coll in _collections(ax, "panels") + _collections(ax, "panels-flat"):
+        for pid, rgba, path in zip(coll.get_urls(), coll.get_facecolors(), coll.get_paths(),
+                                   strict=True):
+            colours.setdefault(pid, tuple(np.round(rgba, 6)))
+            polys.append(Polygon(path.vertices[:4]))
+    assert len(set(colours.values())) == len(ids)               # no colour used twice
+    areas = sum(p.area for p in polys)
+    assert unary_union(polys).area == pytest.approx(areas, rel=1e-6)   # nothing hidden
+    for side in ("mold", "design"):
+        ax = _axes(fig, f"view-{side}")
+        frame = ax.get_window_extent(renderer)
+        boxes = [t.get_bbox_patch().get_window_extent(renderer) for t in ax.texts
+                 if (t.get_gid() or "").startswith(f"label-{side}:")]
+        assert len(boxes) >= (0.5 * len(ids) if side == "mold" else 1), side
+        for k, box in enumerate(boxes):
+            assert frame.x0 - 1 <= box.x0 and box.x1 <= frame.x1 + 1, side
+            assert frame.y0 - 1 <= box.y0 and box.y1 <= frame.y1 + 1, side
+            assert not any(box.overlaps(other) for other in boxes[k + 1:]), side
+
+
 def test_mold_pieces_mark_the_flat_panels(arts):
     doc = json.loads((arts / "mold.json").read_text())
     panels = doc["data"]["panels"]
@@ -175,6 +261,16 @@ def test_mold_pieces_mark_the_flat_panels(arts):
     assert bool(_collections(ax, "flat-outlines")) == bool(flat)
     title = fig.texts[0].get_text()
     assert f"{len(panels) - len(flat)} curved panel" in title and f"{len(flat)} flat" in title
+    # one scale bar for every view, every view at its scale; the legend only what is drawn
+    views = [a for a in fig.axes if (a.get_gid() or "").startswith("view-")]
+    bars = [line for a in views for line in a.lines if line.get_gid() == "scale-bar"]
+    assert len(bars) == 1 and len(views) >= 2
+    per_inch = {round((a.get_xlim()[1] - a.get_xlim()[0])
+                      / (a.get_position().width * fig.get_size_inches()[0]), 9) for a in views}
+    assert len(per_inch) == 1
+    (legend,) = fig.legends
+    labels = " ".join(t.get_text() for t in legend.get_texts())
+    assert ("flat panel" in labels) == bool(flat)
 
 
 # --------------------------------------------------------------------------------------------
@@ -246,7 +342,7 @@ def test_sheet_previews_show_cut_and_score_colours(arts, tmp_path):
     fig = _figure(arts / "sheets", "sheets", "sheet01")
     (leg,) = fig.legends
     names = [t.get_text().split(":")[0] for t in leg.get_texts()]
-    assert names == list(SHEET_LEGEND)
+    assert names == ["CUT", "SCORE", "LABEL"]         # the layers this sheet draws on, only
     for line, name in zip(leg.get_lines(), names, strict=True):
         np.testing.assert_allclose(np.asarray(line.get_color())[:3], legend[name])
 
@@ -301,7 +397,8 @@ def test_every_overlaid_outline_lies_inside_its_cell():
               "alignment": {"matrix": np.eye(2).tolist(), "translation": [0.0, 0.0]}}
              for k in range(3)]
     classes = [{"id": f"C{k}", "quantity": 1, "representative": f"S{k}",
-                "members": [f"S{k}"], "max_relative_error": 0.0} for k in range(3)]
+                "members": [f"S{k}"], "max_error": 0.0, "max_relative_error": 0.0}
+               for k in range(3)]
     fig = overlay_figure(parts, classes, "m")
     cells = [a for a in fig.axes if (a.get_gid() or "").startswith("class-")]
     assert len(cells) == 3
@@ -310,3 +407,39 @@ def test_every_overlaid_outline_lies_inside_its_cell():
         for line in ax.lines:
             x, y = line.get_data()
             assert x0 < np.min(x) and np.max(x) < x1 and y0 < np.min(y) and np.max(y) < y1
+
+
+def test_strips_are_seen_from_the_side_the_net_is_seen_from(arts, tmp_path, monkeypatch):
+    """The strips' width figure looks at the strips from where the net's figures look at the
+    net (the outside of the wall), not from the other side."""
+    from dgpc_cli.report import net as net_figures
+
+    dgpc("planarize-strips", arts / "twisted", "-o", tmp_path / "strips")
+    seen = {}
+    monkeypatch.setattr(net_figures, "field_figure",
+                        lambda *a, **kw: seen.setdefault(kw["title"], kw))
+    for path, kind in ((arts / "twisted", "net"), (tmp_path / "strips", "strips")):
+        page = PAGES[kind](path.with_suffix(".json"))
+        page.figures[0][2]()
+    (net_kw,) = [kw for t, kw in seen.items() if t.startswith("strip width")]
+    (strips_kw,) = [kw for t, kw in seen.items() if t.endswith("planar-quad strips")]
+    assert net_kw["front"] is not None and strips_kw.get("front") is not None
+    assert float(np.dot(net_kw["front"], strips_kw["front"])) > 0.95
+    assert np.allclose(net_kw["up"], strips_kw["up"])
+
+
+def test_one_index_covers_net_strips_flat_parts_sheets_and_mold(arts, tmp_path):
+    """``dgpc report`` of a project's artifacts: one index showing the figures of every one of
+    them (net, strips, flat parts, sheets, mold), each linking its own page of metrics."""
+    import re
+
+    stems = [arts / n for n in ("bent", "strips", "flat", "sheets", "mold")]
+    out = dgpc("report", *stems, "-o", tmp_path / "all").stdout.split()
+    assert out[-1] == str(tmp_path / "all-index.html")
+    page = (tmp_path / "all-index.html").read_text()
+    for name in ("bent", "strips", "flat", "sheets", "mold"):
+        assert f'href="all-{name}-index.html"' in page
+        assert (tmp_path / f"all-{name}-index.html").is_file()
+        figures = re.findall(rf'src="(all-{name}-[^"]+\.png)"', page)
+        assert figures and all((tmp_path / f).is_file() for f in figures), name
+    assert 'src="all-sheets-sheet01.png"' in page and 'src="all-flat-strips.png"' in page

@@ -33,3 +33,57 @@ def test_report_refuses_existing_files(tmp_path):
     result = dgpc("report", flat, "-o", tmp_path / "r", expect=1)
     assert "already exists" in result.stderr
     dgpc("report", flat, "-o", tmp_path / "r", "--force")
+
+
+def _signed_area(points) -> float:
+    x, y = np.asarray(points, float).T
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+
+
+def test_laid_out_parts_face_the_way_the_dxf_cuts_them(tmp_path):
+    """The layout figure shows each part as the flat artifact and the cut sheet have it (its
+    outline's orientation on the page, in display coordinates, is the DXF's), not mirrored by
+    an inverted y axis."""
+    import ezdxf
+
+    from dgpc_cli.io.flat import read_flat
+    from dgpc_cli.report.flat import layout_figure
+    from dgpc_cli.report.render import style
+
+    flat = read_flat(_flat(tmp_path))
+    with style():
+        fig = layout_figure(flat.parts, flat.units)
+    ax = next(a for a in fig.axes if a.get_gid() == "layout")
+    shown = {}
+    for patch in ax.patches:
+        if (patch.get_gid() or "").startswith("part:"):
+            xy = patch.get_transform().transform(patch.get_path().vertices)
+            shown[patch.get_gid()[5:]] = _signed_area(xy)
+    assert set(shown) == {p["id"] for p in flat.parts}
+    for p in flat.parts:
+        assert np.sign(shown[p["id"]]) == np.sign(_signed_area(p["outline"])), p["id"]
+    dgpc("nest", tmp_path / "f", "--sheet", "2000x1500", "--scale", 100, "-o",
+         tmp_path / "sh")
+    dxf_signs = sorted(np.sign(_signed_area(e.get_points("xy")))
+                       for path in sorted(tmp_path.glob("sh.sheet*.dxf"))
+                       for e in ezdxf.readfile(path).modelspace().query(
+                           "LWPOLYLINE[layer=='CUT']"))
+    assert dxf_signs == sorted(np.sign(v) for v in shown.values())
+
+
+def test_overlay_has_a_scale_bar_and_errors_with_a_unit(tmp_path):
+    """The overlay's cells share one scale, shown by a bar; each class's error is a length."""
+    from dgpc_cli.io.flat import read_flat
+    from dgpc_cli.report.flat import overlay_figure
+    from dgpc_cli.report.render import style
+
+    flat = read_flat(_flat(tmp_path, twist="0.4"))
+    with style():
+        fig = overlay_figure(flat.parts, flat.classes, flat.units)
+    bars = [line for ax in fig.axes for line in ax.lines if line.get_gid() == "scale-bar"]
+    assert len(bars) == 1
+    cells = [a for a in fig.axes if (a.get_gid() or "").startswith("class-")]
+    spans = {round(np.diff(a.get_xlim())[0], 12) for a in cells}
+    assert len(spans) == 1                                # one scale for every cell
+    for ax in cells:
+        assert ax.get_title().rstrip().endswith(" mm"), ax.get_title()

@@ -8,6 +8,7 @@ from pathlib import Path
 import click
 
 from dgpc_cli.cli.finite_float import FiniteFloat
+from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import (
     check_units,
     check_writable,
@@ -24,6 +25,7 @@ from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.sheets import extra_path, sheets_files
 from dgpc_cli.io.units import mm_per_unit, same_units
 from dgpc_cli.nesting.blf import Sheet
+from dgpc_cli.nesting.tools import TOOLS, resolve_tool
 from dgpc_cli.stages.nest import (
     ENGINES,
     mold_map,
@@ -56,10 +58,32 @@ def _parsed(parser):
               help="A mold artifact: also write the panel-to-mold map DXF.")
 @click.option("--sheet", "sheet_size", required=True, callback=_parsed(parse_sheet),
               metavar="WIDTHxHEIGHT", help="Sheet size in mm, e.g. 2500x1250.")
-@click.option("--margin", type=FiniteFloat(min=0), default=10.0, show_default=True,
-              help="Free border of each sheet (mm).")
-@click.option("--spacing", type=FiniteFloat(min=0), default=3.0, show_default=True,
-              help="Least distance between parts, the kerf (mm).")
+@click.option("--tool", type=click.Choice(list(TOOLS)), default=None,
+              help="The cutter, for the spacing and margin defaults: laser (kerf 0.2 mm, "
+                   "spacing 3 mm, margin 10 mm), router (bit 6 mm, spacing 8 mm, margin "
+                   "20 mm), waterjet (kerf 1 mm, spacing 2 mm, margin 25 mm). [default: "
+                   "laser; router with --tool-diameter]")
+@click.option("--kerf", type=LengthParam(plain="mm", min=0, min_open=True), default=None,
+              help=length_help("Cut width of a laser or water jet, > 0 (default 0.2 mm laser, "
+                               "1 mm waterjet); the default spacing is the kerf plus the "
+                               "tool's clearance.", plain="mm"))
+@click.option("--tool-diameter", "tool_diameter",
+              type=LengthParam(plain="mm", min=0, min_open=True), default=None,
+              help=length_help("Router bit diameter, > 0 (default 6 mm); the default spacing "
+                               "is the diameter plus 2 mm.", plain="mm"))
+@click.option("--margin", type=LengthParam(plain="mm", min=0), default=None,
+              help=length_help("Free border of each sheet, >= 0 [default: the tool's].",
+                               plain="mm"))
+@click.option("--spacing", type=LengthParam(plain="mm", min=0), default=None,
+              help=length_help("Least distance between parts, at least the tool's cut width "
+                               "[default: cut width + the tool's clearance].", plain="mm"))
+@click.option("--border", is_flag=True,
+              help="Also draw the sheet's border, one closed polyline on layer SHEET_BORDER "
+                   "(plotted: a CAM cuts it; by default the cut file has no border).")
+@click.option("--label-style", "label_style", type=click.Choice(["text", "stroke"]),
+              default="text", show_default=True,
+              help="Part ids as TEXT on layer LABEL, or as single-stroke polylines on layer "
+                   "ENGRAVE that an engraver or pen follows.")
 @click.option("--rotations", default="0,180", show_default=True,
               callback=_parsed(parse_rotations), metavar="DEG,DEG,...",
               help="Allowed rotations in degrees (grain or rolling direction).")
@@ -80,8 +104,9 @@ def _parsed(parser):
 @force_opt
 @format_opt
 @click.pass_context
-def nest(ctx, stems, mold_stem, sheet_size, margin, spacing, rotations, units_check, scale,
-         engine, time_limit, seed, output, force, fmt):
+def nest(ctx, stems, mold_stem, sheet_size, tool, kerf, tool_diameter, margin, spacing, border,
+         label_style, rotations, units_check, scale, engine, time_limit, seed, output, force,
+         fmt):
     """Place every part of the flat artifact FLAT (each congruence class in its quantity) on
     as few sheets as it can, and write the sheets artifact -o SHEETS: SHEETS.json, .obj,
     .parts.csv and per sheet SHEETS.sheetNN.dxf/.svg/.png (with --mold, .moldmap.dxf).
@@ -92,8 +117,16 @@ def nest(ctx, stems, mold_stem, sheet_size, margin, spacing, rotations, units_ch
     summed over them (recorded in the JSON's data.combined).
 
     The parts' unit is the flat artifact's (from `init --units`); every DXF is in mm (times
-    SCALE); sheet, margin and spacing are in mm. Prints the written JSON path.
+    SCALE); sheet, margin, spacing, kerf and tool diameter are in mm. Prints the written JSON
+    path.
     """
+    try:
+        cutter = resolve_tool(tool, *(x.to_mm() if x is not None else None
+                                      for x in (kerf, tool_diameter, spacing, margin)))
+    except ValueError as err:
+        option, message = err.args
+        raise click.BadParameter(message, ctx=ctx, param_hint=f"'{option}'") from None
+    margin, spacing = cutter.margin, cutter.spacing
     json_paths = [artifact_paths(stem)[0] for stem in stems]
     check_writable(output, force, extra_path(output, "parts_csv"))
     flats = [read_flat(stem) for stem in stems]
@@ -123,7 +156,7 @@ def nest(ctx, stems, mold_stem, sheet_size, margin, spacing, rotations, units_ch
                             progress=bar.update)
     extra: dict[str, bytes] = {"parts_csv": parts_csv(result, flat_parts,
                                                       scale * mm_per_unit(units))}
-    drawings = sheet_drawings(result)
+    drawings = sheet_drawings(result, border=border, label_style=label_style)
     for s, (dxf, svg, png, _) in enumerate(drawings):
         extra.update({f"sheet{s + 1:02d}_dxf": dxf, f"sheet{s + 1:02d}_svg": svg,
                       f"sheet{s + 1:02d}_png": png})
@@ -141,8 +174,9 @@ def nest(ctx, stems, mold_stem, sheet_size, margin, spacing, rotations, units_ch
         data["combined"] = combined.record()
         metrics["classes"] = {c["id"]: c["quantity"] for c in combined.classes}
     parameters = {"sheet": f"{sheet.width:g}x{sheet.height:g}", "margin": margin,
-                  "spacing": spacing, "rotations": rotations, "units": units, "scale": scale,
-                  "engine": engine, "time_limit": time_limit, "seed": seed,
+                  "spacing": spacing, **cutter.record(), "border": border,
+                  "label_style": label_style, "rotations": rotations, "units": units,
+                  "scale": scale, "engine": engine, "time_limit": time_limit, "seed": seed,
                   "mold": mold_stem is not None}
     files = sheets_files(output, data=data, extra=extra, obj=sheets_obj(result),
                          inputs=inputs, parameters=parameters, metrics=metrics,

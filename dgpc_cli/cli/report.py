@@ -9,15 +9,18 @@ import click
 from dgpc_cli.cli.output_path import OutputPath
 
 
-@click.command(short_help="Write figures of an artifact (PNG) and an index.html.")
-@click.argument("stem", type=click.Path(path_type=Path))
+@click.command(short_help="Write figures of artifacts (PNG) and an index.html.")
+@click.argument("stems", metavar="STEM [STEM ...]", nargs=-1, required=True,
+                type=click.Path(path_type=Path))
 @click.option("-o", "--output", "output", required=True,
               type=OutputPath(),
               help="Prefix: writes PREFIX-<figure>.png and PREFIX-index.html.")
 @click.option("--force", is_flag=True, help="Overwrite existing output files.")
-def report(stem, output, force):
+def report(stems, output, force):
     """Figures of the artifact STEM and PREFIX-index.html showing them with the artifact's
-    metrics as a table. Per kind:
+    metrics as a table. Several STEMs (a project's net, strips, flat parts, sheets, mold):
+    each one's report under PREFIX-NAME (NAME its file name) and PREFIX-index.html showing
+    all their figures, each with a link to its own page. Per kind:
 
     \b
     net     PREFIX-width.png (strip width), PREFIX-curvature.png (Gaussian curvature K, red
@@ -45,11 +48,14 @@ def report(stem, output, force):
     from dgpc_cli.cli.inspect import artifact_kind
     from dgpc_cli.io.artifact import artifact_paths
     from dgpc_cli.io.atomic import write_files
-    from dgpc_cli.stages.report import previous_report_files, report_files
+    from dgpc_cli.stages.report import overview_files, previous_report_files, report_files
 
-    json_path, _ = artifact_paths(stem)
-    kind = artifact_kind(json_path)
-    files = report_files(json_path, kind, output)
+    json_paths = [artifact_paths(stem)[0] for stem in stems]
+    kinds = [artifact_kind(p) for p in json_paths]
+    if len(json_paths) == 1:
+        files = report_files(json_paths[0], kinds[0], output)
+    else:
+        files = overview_files(list(zip(json_paths, kinds, strict=True)), output)
     write_files(files, force=force, replaces=previous_report_files(output))
     for p in files:
         click.echo(str(p))

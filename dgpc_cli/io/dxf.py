@@ -9,7 +9,8 @@ its bytes from :meth:`Drawing.to_bytes`, which
   (``CUT``) is never split: a duplicate there is an error;
 * writes DXF R2010 with ``$INSUNITS`` = 4 (mm), ``$MEASUREMENT`` = 1 (metric), the layers with
   their colours, linetypes and plot flags, ``$EXTMIN``/``$EXTMAX`` (and the limits and the
-  initial view) set to the drawing's extents;
+  initial view) set to the drawing's extents as ezdxf measures them (``ezdxf.bbox``, texts by
+  their font), so that a viewer's "zoom extents" shows the drawing and nothing more;
 * runs ezdxf's ``audit()`` on the document before writing it: an error there is a
   :class:`~dgpc_cli.errors.DgpcError` (exit 1), and nothing is written;
 * makes the bytes deterministic: ezdxf stamps creation dates and random GUIDs into a drawing
@@ -19,10 +20,13 @@ its bytes from :meth:`Drawing.to_bytes`, which
 
 Layer convention of the cut sheets (:data:`SHEET_LAYERS`, documented in the README): ``CUT``
 (red, 1) closed outlines to cut; ``SCORE`` (blue, 5) open bend/score lines; ``LABEL`` (green,
-3) part ids and leaders, to mark or to ignore; ``SHEET`` (grey, 8, dashed, not plotted) the
-sheet's border as four separate lines, for reference only. Previews (:func:`previews`) are
-rendered from the DXF bytes themselves by ezdxf's drawing add-on, in the layers' colours on
-white.
+3) part ids and leaders as TEXT (``nest --label-style text``) or ``ENGRAVE`` (green, 3) the same
+as single-stroke polylines for an engraver (``--label-style stroke``,
+:mod:`dgpc_cli.io.stroke_font`); ``SHEET_BORDER`` (grey, 8, plotted) the sheet's border, one
+closed polyline, only when ``nest --border`` asks for it (a CAM cuts whatever it is given).
+Previews (:func:`previews`) are rendered from the DXF bytes themselves by ezdxf's drawing
+add-on, in the layers' colours on white, with a title, the sheet's outline (one path, not in
+the DXF) and a scale bar.
 
 Text boxes (:func:`text_box`) are estimated without fonts (every character as wide as the text
 is high), which is wider than the glyphs of the usual CAD fonts: a label placed by its box
@@ -56,9 +60,10 @@ class Layer:
     closed_only: bool = False
 
 
-#: The layers of a cut sheet (the convention of the module docstring).
-SHEET_LAYERS = {"SHEET": Layer(8, "DASHED", plot=False), "CUT": Layer(1, closed_only=True),
-                "SCORE": Layer(5), "LABEL": Layer(3)}
+#: The layers a cut sheet may have (the convention of the module docstring); a sheet's DXF
+#: has those it draws on.
+SHEET_LAYERS = {"SHEET_BORDER": Layer(8, closed_only=True), "CUT": Layer(1, closed_only=True),
+                "SCORE": Layer(5), "LABEL": Layer(3), "ENGRAVE": Layer(3)}
 #: Points closer than this (mm) are the same point: zero-length and duplicate segments.
 QUANTUM_MM = 1e-6
 #: Text box of :func:`text_box` around a middle-centred text of height h: width per character,
@@ -132,6 +137,15 @@ class Drawing:
             raise ValueError(f"alignment {align!r} is not one of {', '.join(ALIGNMENTS)}")
         self.texts.append(Text(layer, text, (float(at[0]), float(at[1])), float(height),
                                float(rotation), align))
+
+    def stroke_text(self, layer: str, text: str, at, height: float, rotation: float = 0.0,
+                    align: str = "MIDDLE_CENTER") -> None:
+        """A text as single-stroke open polylines (:func:`~.stroke_font.stroke_lines`), placed
+        like :meth:`text`."""
+        from .stroke_font import stroke_lines
+
+        for line in stroke_lines(text, height, at, rotation, align):
+            self.polyline(layer, line)
 
     def extents(self) -> tuple[np.ndarray, np.ndarray]:
         """Lower-left and upper-right corners of everything drawn (text boxes included)."""
@@ -245,7 +259,7 @@ def _document(drawing: Drawing, source):
         msp.add_text(t.text, height=t.height, rotation=t.rotation,
                      dxfattribs={"layer": t.layer}).set_placement(
             t.at, align=ALIGNMENTS[t.align])
-    lo, hi = drawing.extents()
+    lo, hi = _measured_extents(msp, drawing)
     # ezdxf copies the model space's extents into the header when it writes, unless one of
     # them is the zero vector: set both
     for name, value in (("extmin", lo), ("extmax", hi)):
@@ -257,6 +271,17 @@ def _document(drawing: Drawing, source):
     doc.set_modelspace_vport(1.05 * size, center=(float(lo[0] + hi[0]) / 2,
                                                   float(lo[1] + hi[1]) / 2))
     return doc
+
+
+def _measured_extents(msp, drawing: Drawing) -> tuple[np.ndarray, np.ndarray]:
+    """Lower-left and upper-right corners of the model space as ezdxf measures it (texts by
+    their font); the drawing's own estimate when there is nothing to measure."""
+    from ezdxf import bbox
+
+    box = bbox.extents(msp, fast=False)
+    if not box.has_data:
+        return drawing.extents()
+    return np.array([box.extmin.x, box.extmin.y]), np.array([box.extmax.x, box.extmax.y])
 
 
 def _dxf_bytes(drawing: Drawing, source) -> bytes:
@@ -274,9 +299,14 @@ def _dxf_bytes(drawing: Drawing, source) -> bytes:
     return doc.encode(stream.getvalue())
 
 
-def previews(dxf: bytes, formats: tuple[str, ...] = ("svg", "png")) -> tuple[bytes, ...]:
+def previews(dxf: bytes, formats: tuple[str, ...] = ("svg", "png"), *,
+             title: str | None = None, frame: tuple[float, float] | None = None,
+             width: float = 10.0) -> tuple[bytes, ...]:
     """Previews of the DXF bytes ``dxf`` in ``formats`` (svg, png), rendered with ezdxf's
-    drawing add-on in the layers' colours on white; no metadata that changes between runs."""
+    drawing add-on in the layers' colours on white, ``title`` above, a scale bar in mm under
+    the drawing, and with ``frame = (width, height)`` the sheet's outline from the origin (one
+    dashed grey path, drawn in the preview only), ``width`` inches wide at 100 dpi; no
+    metadata that changes between runs."""
     import matplotlib
 
     matplotlib.use("Agg", force=False)
@@ -290,12 +320,22 @@ def previews(dxf: bytes, formats: tuple[str, ...] = ("svg", "png")) -> tuple[byt
                            color_policy=ColorPolicy.COLOR)
     meta = {"svg": {"Date": None, "Creator": None}, "png": {"Software": None}}
     out = []
+    lo, hi = _preview_limits(doc, frame)
+    # the figure as wide as the page, as tall as the drawing needs (within 3 and 10 inches),
+    # with bands for the title (0.5 in) and the scale bar (0.6 in)
+    inner = min(max(0.98 * width * float(hi[1] - lo[1]) / float(hi[0] - lo[0]), 1.9),
+                0.9 * width)
+    height = inner + 0.6 + (0.5 if title else 0.1)
     with plt.rc_context({"svg.hashsalt": "dgpc", "svg.fonttype": "path"}):
-        fig = plt.figure(figsize=(10, 10 * 0.75))
+        fig = plt.figure(figsize=(width, height))
         try:
-            ax = fig.add_axes((0, 0, 1, 1))
+            ax = fig.add_axes((0.01, 0.6 / height, 0.98, inner / height))
             Frontend(RenderContext(doc), MatplotlibBackend(ax), config=config).draw_layout(
                 doc.modelspace(), finalize=True)
+            fig.set_size_inches(width, height)       # the add-on resizes it to the drawing
+            _preview_frame(ax, lo, hi, frame, fontsize=width)
+            if title:
+                fig.text(0.01, 0.985, title, ha="left", va="top", fontsize=1.2 * width)
             for fmt in formats:
                 buf = io.BytesIO()
                 fig.savefig(buf, format=fmt, dpi=100, metadata=meta[fmt])
@@ -303,3 +343,51 @@ def previews(dxf: bytes, formats: tuple[str, ...] = ("svg", "png")) -> tuple[byt
         finally:
             plt.close(fig)
     return tuple(out)
+
+
+def _preview_limits(doc, frame: tuple[float, float] | None) -> tuple[np.ndarray, np.ndarray]:
+    """Corners of what a preview shows: the drawing (``ezdxf.bbox``) and the sheet ``frame``
+    from the origin, with a margin of 3 % around."""
+    from ezdxf import bbox
+
+    box = bbox.extents(doc.modelspace(), fast=False)
+    lo = np.array([box.extmin.x, box.extmin.y]) if box.has_data else np.zeros(2)
+    hi = np.array([box.extmax.x, box.extmax.y]) if box.has_data else np.ones(2)
+    if frame is not None:
+        lo, hi = np.minimum(lo, 0.0), np.maximum(hi, frame)
+    pad = 0.03 * float(max(hi - lo))
+    return lo - pad, hi + pad
+
+
+def _preview_frame(ax, lo, hi, frame: tuple[float, float] | None, fontsize: float = 10.0
+                   ) -> None:
+    """The preview's limits ``lo``, ``hi``, the sheet ``frame`` as one dashed rectangle (the
+    DXF has no border unless asked) and a round scale bar under the drawing, in mm."""
+    from matplotlib.patches import Rectangle
+    from matplotlib.transforms import offset_copy
+
+    if frame is not None:
+        ax.add_patch(Rectangle((0.0, 0.0), frame[0], frame[1], fill=False,
+                               edgecolor=(0.5, 0.5, 0.5), lw=0.8, linestyle=(0, (6, 4)),
+                               gid="sheet-frame"))
+    ax.set_xlim(lo[0], hi[0])
+    ax.set_ylim(lo[1], hi[1])
+    ax.set_aspect("equal", adjustable="box", anchor="N")
+    ax.set_axis_off()
+    length = _round_length(0.2 * float(hi[0] - lo[0]))
+    x0 = lo[0] + 0.01 * float(hi[0] - lo[0])
+    fig = ax.get_figure()
+    ax.plot([x0, x0 + length], [0.0, 0.0], color="k", lw=2.5, solid_capstyle="butt",
+            clip_on=False, gid="scale-bar",
+            transform=offset_copy(ax.get_xaxis_transform(), fig, y=-8, units="points"))
+    ax.text(x0 + 0.5 * length, 0.0, f"{length:g} mm", ha="center", va="top", fontsize=fontsize,
+            clip_on=False,
+            transform=offset_copy(ax.get_xaxis_transform(), fig, y=-12, units="points"))
+
+
+def _round_length(span: float) -> float:
+    """The largest 1, 2 or 5 × 10^k not above ``span``."""
+    if not span > 0 or not np.isfinite(span):
+        return 1.0
+    k = np.floor(np.log10(span))
+    return float(max(step * 10.0**k for step in (1.0, 2.0, 5.0) if step * 10.0**k <= span))

@@ -3,11 +3,13 @@ by :mod:`dgpc_cli.io.dxf` (R2010, audited, deterministic; previews in the layers
 
 Sheet (origin at the sheet's lower-left corner), layers of :data:`~dgpc_cli.io.dxf.SHEET_LAYERS`:
 
-* ``SHEET`` — the sheet's border, four lines (grey, dashed, not plotted: nothing to cut);
+* ``SHEET_BORDER`` — only with ``border``: the sheet's border, one closed polyline (plotted:
+  a CAM that is given it cuts it, so it is there only when asked for);
 * ``CUT`` — one closed outline per part, under its placement;
 * ``SCORE`` — open polylines, the rulings (bend/score lines);
-* ``LABEL`` — the part id inside the part between two score lines
-  (:mod:`dgpc_cli.nesting.labels`), or its short id beside it with a leader.
+* ``LABEL`` (``label_style`` text) or ``ENGRAVE`` (stroke) — the part id inside the part
+  between two score lines (:mod:`dgpc_cli.nesting.labels`), or its short id beside it with a
+  leader: TEXT, or single-stroke polylines an engraver follows.
 """
 
 from __future__ import annotations
@@ -22,22 +24,37 @@ MAP_LAYERS = {"PROFILE": Layer(7), "AXIS": Layer(8, "CENTER"), "SECTOR": Layer(8
               "PIECES": Layer(6), "PANELS": Layer(4), "LABEL": Layer(3), "TABLE": Layer(7)}
 
 
-def sheet_drawing(width: float, height: float, placed: list[dict]) -> tuple[Drawing, list]:
+#: ``nest --label-style``: the layer of the labels in each style.
+LABEL_LAYER = {"text": "LABEL", "stroke": "ENGRAVE"}
+
+
+def sheet_layers(border: bool, label_style: str) -> dict[str, Layer]:
+    """The layers of a sheet drawn with ``border`` and ``label_style`` (text or stroke)."""
+    names = (["SHEET_BORDER"] if border else []) + ["CUT", "SCORE", LABEL_LAYER[label_style]]
+    return {name: SHEET_LAYERS[name] for name in names}
+
+
+def sheet_drawing(width: float, height: float, placed: list[dict], *, border: bool = False,
+                  label_style: str = "text") -> tuple[Drawing, list]:
     """The drawing of one sheet and its labels; ``placed`` items have ``id``, ``outline``,
     ``score``, ``label`` and ``geodesics``, all in sheet mm, already placed."""
-    d = Drawing(SHEET_LAYERS)
-    corners = [(0.0, 0.0), (width, 0.0), (width, height), (0.0, height)]
-    for a, b in zip(corners, corners[1:] + corners[:1], strict=True):
-        d.line("SHEET", a, b)
+    d = Drawing(sheet_layers(border, label_style))
+    if border:
+        d.polyline("SHEET_BORDER", [(0.0, 0.0), (width, 0.0), (width, height), (0.0, height)],
+                   closed=True)
     for p in placed:
         d.polyline("CUT", p["outline"], closed=True)
         for line in p["score"]:
             d.polyline("SCORE", line)
     labels = place_labels(placed, width, height)
+    layer = LABEL_LAYER[label_style]
     for lb in labels:
-        d.text("LABEL", lb.text, lb.at, lb.height, lb.rotation)
+        if label_style == "stroke":
+            d.stroke_text(layer, lb.text, lb.at, lb.height, lb.rotation)
+        else:
+            d.text(layer, lb.text, lb.at, lb.height, lb.rotation)
         if lb.leader is not None:
-            d.polyline("LABEL", lb.leader)
+            d.polyline(layer, lb.leader)
     return d, labels
 
 
@@ -50,15 +67,16 @@ def mold_map_drawing(r_mm: np.ndarray, h_mm: np.ndarray, sector_deg: float,
     piece outlined and named, and on it (layer PANELS) where the panels are pressed: one
     outline per band of mold rows, as wide as its panels' angle (the mold is a surface of
     revolution, so every panel of a band fits the same place), labelled with the rows and the
-    number of panels. Below: a table, one line per mold piece listing its panels, then the
-    flat panels (no mold) separately. Lines shared by the pieces, bands and the sector are
-    drawn once (the pieces first).
+    number of panels. Right of it: a table, per mold piece its panels, then the flat panels
+    (no mold) separately, a few ids a line, in a column about as tall as the drawing (texts
+    sized to be read on the sheet and in its preview). Lines shared by the pieces, bands and
+    the sector are drawn once (the pieces first).
     """
     r_mm, h_mm = np.asarray(r_mm, float), np.asarray(h_mm, float)
     s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(r_mm), np.diff(h_mm)))])
     phi = np.radians(sector_deg)
     size = float(max(np.ptp(h_mm), r_mm.max(), s[-1], 1e-9))
-    text = 0.02 * size
+    text = 0.03 * size
     x0 = float(r_mm.max() + 0.3 * size + 0.5 * r_mm.max() * phi)
     d = Drawing(MAP_LAYERS)
     d.polyline("PROFILE", np.column_stack([r_mm, h_mm]))
@@ -81,15 +99,23 @@ def mold_map_drawing(r_mm: np.ndarray, h_mm: np.ndarray, sector_deg: float,
                                                               s[a:b + 1]])[::-1]]),
                    closed=True)
         d.text("LABEL", f"rows {a}-{b}: {count} panels",
-               (x0 + float(half.max()) + 0.02 * size, 0.5 * float(s[a] + s[b])), 0.5 * text,
-               align="MIDDLE_LEFT")
+               (x0 + float(half.max()) + 0.02 * size, 0.5 * float(s[a] + s[b])),
+               min(0.6 * text, 0.8 * float(s[b] - s[a])), align="MIDDLE_LEFT")
     d.polyline("SECTOR", np.concatenate([left, right[::-1]]), closed=True)
     d.text("LABEL", f"developed sector {sector_deg:.4g} deg",
            (x0 - float(half.max()), float(s[-1]) + 0.1 * size), text, align="MIDDLE_LEFT")
-    y = float(min(h_mm.min(), 0.0)) - 0.2 * size
-    for line in map_table(pieces, panels):
-        d.text("TABLE", line, (0.0, y), 0.6 * text, align="MIDDLE_LEFT")
-        y -= 1.2 * text
+    # the table right of the bands' labels, from the top of the drawing down
+    top = float(max(h_mm.max(), s[-1])) + 0.1 * size
+    sector_label = f"developed sector {sector_deg:.4g} deg"
+    x_table = max(x0 + float(half.max()) + 0.02 * size + 22 * 0.6 * 0.6 * text,
+                  x0 - float(half.max()) + len(sector_label) * 0.65 * text) + 0.05 * size
+    lines = map_table(pieces, panels, per_line=4)
+    step = max(1.3 * 0.5 * text, 1.0 * size / max(len(lines), 1))
+    step = min(step, 1.3 * 0.6 * text)
+    y = top
+    for line in lines:
+        d.text("TABLE", line, (x_table, y), step / 1.3, align="MIDDLE_LEFT")
+        y -= step
     return d
 
 

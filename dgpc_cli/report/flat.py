@@ -20,11 +20,12 @@ import math
 
 import numpy as np
 
+from ..io.units import mm_per_unit
 from .render import figure
 from .views import nice_length
 from .words import counted
 
-__all__ = ["PAGE", "layout_figure", "overlay_figure", "principal_rotation"]
+__all__ = ["PAGE", "error_text", "layout_figure", "overlay_figure", "principal_rotation"]
 
 #: Page width and largest page height (inches): a portrait sheet of paper.
 PAGE = (8.0, 10.5)
@@ -34,6 +35,8 @@ TITLE_PT, LABEL_PT, SMALL_PT = 11, 8, 7
 CUT, SCORE, FILL = (0.8, 0.0, 0.0), (0.0, 0.0, 0.85), (0.95, 0.95, 0.95)
 #: Gap between parts in the layout, as a fraction of the tallest part.
 GAP = 0.35
+#: Height (inches) of the band under the overlay's cells that holds its scale bar.
+BAR_BAND = 0.45
 
 
 def principal_rotation(points: np.ndarray) -> np.ndarray:
@@ -77,9 +80,17 @@ def _grid_shape(count: int, aspect: float) -> tuple[int, int, float]:
     return best
 
 
+def error_text(error: float, units: str) -> str:
+    """A class's largest error ``error`` (in ``units``) as a length in mm, e.g. ``0.031 mm``
+    (errors of congruent parts are well under a millimetre, whatever the model's unit)."""
+    mm = float(error) * mm_per_unit(units)
+    return "0 mm" if mm == 0 else f"{mm:.2g} mm"
+
+
 def overlay_figure(parts: list[dict], classes: list[dict], units: str):
     """All parts aligned on their class representatives, one cell (axes gid ``class-<id>``)
-    per congruence class."""
+    per congruence class, every cell at one scale, with a scale bar (gid ``scale-bar``) under
+    the grid."""
 
     by_id = {p["id"]: p for p in parts}
     drawings = []
@@ -94,9 +105,15 @@ def overlay_figure(parts: list[dict], classes: list[dict], units: str):
     aspect = max(max(e[0] / max(e[1], 1e-12 * e[0]) for e in extents), 1.0)
     cols, rows, width = _grid_shape(len(classes), aspect)
     cell_h = width / aspect + 0.32
-    fig = figure(PAGE[0], min(PAGE[1], rows * cell_h + 0.9))
+    fig = figure(PAGE[0], min(PAGE[1], rows * cell_h + 0.9) + BAR_BAND)
     W, H = fig.get_size_inches()
     span = max(float(e[0]) for e in extents)                 # one scale for every class
+    ratio = (cell_h - 0.36) / (width - 0.1)                  # the axes' height over width
+    # the longest part fills the width, and no part is taller than the axes (a part whose
+    # height fills the cell would lose its top edge to the axes' frame): one half height for
+    # every cell, so that every cell has the same scale
+    half_h = max(0.52 * span * ratio, 0.52 * max(float(e[1]) for e in extents))
+    half_w = half_h / ratio
     for k, (cls, outlines, scores) in enumerate(drawings):
         r, c = divmod(k, cols)
         left = (c * width + 0.05) / W
@@ -109,22 +126,30 @@ def overlay_figure(parts: list[dict], classes: list[dict], units: str):
                 ax.plot(*seg.T, lw=0.6, color=SCORE, alpha=0.6)
         allp = np.concatenate(outlines)
         mid = 0.5 * (allp.min(axis=0) + allp.max(axis=0))
-        ratio = (cell_h - 0.36) / (width - 0.1)           # the axes' height over width
-        # the longest part fills the width, and no part is taller than the axes (a part whose
-        # height fills the cell would lose its top edge to the axes' frame)
-        half_h = max(0.52 * span * ratio, 0.52 * float(np.ptp(allp[:, 1])))
-        half_w = half_h / ratio
         ax.set_xlim(mid[0] - half_w, mid[0] + half_w)
         ax.set_ylim(mid[1] - half_h, mid[1] + half_h)
         ax.set_aspect("equal", adjustable="box")
         ax.set_axis_off()
         ax.set_title(f"{cls['id']}: {cls['quantity']} × {cls['representative']}, "
-                     f"error ≤ {cls['max_relative_error']:.1e}", fontsize=LABEL_PT, pad=2)
+                     f"error ≤ {error_text(cls['max_error'], units)}", fontsize=LABEL_PT,
+                     pad=2)
+    # the scale bar, in an axes as wide as a cell and at the cells' scale
+    bar_ax = fig.add_axes((0.05 / W, 0.1 / H, (width - 0.1) / W, 0.3 / H))
+    bar_ax.set_gid("scale-bar-axes")
+    bar_ax.set_xlim(0.0, 2 * half_w)
+    bar_ax.set_ylim(0.0, 1.0)
+    bar_ax.set_axis_off()
+    bar = nice_length(0.25 * span)
+    bar_ax.plot([0.05 * half_w, 0.05 * half_w + bar], [0.75, 0.75], color="k", lw=2.5,
+                solid_capstyle="butt", clip_on=False, gid="scale-bar")
+    bar_ax.text(0.05 * half_w + 0.5 * bar, 0.5, f"{bar:g} {units}", ha="center", va="top",
+                fontsize=LABEL_PT)
     fig.suptitle(f"{counted(len(parts), 'part')} in "
                  f"{counted(len(classes), 'congruence class', 'congruence classes')}, each "
                  "overlaid on "
                  f"its representative (one scale, length of the longest "
-                 f"{span:.4g} {units})", fontsize=TITLE_PT - 1, y=0.995)
+                 f"{span:.4g} {units}; error: largest distance between matching outline "
+                 "points)", fontsize=TITLE_PT - 1, y=0.995, wrap=True)
     _cut_score_legend(fig, H, "outlines (cut)", "rulings (score)")
     return fig
 
@@ -186,8 +211,11 @@ def layout_figure(parts: list[dict], units: str):
     fig = figure(PAGE[0], fig_h)
     ax = fig.add_axes((0.02, 0.02, 0.96, 1.0 - 0.9 / fig_h))
     ax.set_gid("layout")
+    # rows run down the page: a part's corner measured from the top, the y axis kept upright
+    # (an inverted axis would draw every part mirror-imaged against the DXF)
+    corners = np.column_stack([corners[:, 0], h - corners[:, 1] - sizes[order, 1]])
     for (p, o, segs, label), corner in zip([turned[i] for i in order], corners, strict=True):
-        ax.fill(*(o + corner).T, facecolor=FILL, edgecolor=CUT, lw=0.6)
+        ax.fill(*(o + corner).T, facecolor=FILL, edgecolor=CUT, lw=0.6, gid=f"part:{p['id']}")
         for seg in segs:
             ax.plot(*(seg + corner).T, lw=0.35, color=SCORE)
         lx, ly = label + corner
@@ -196,13 +224,13 @@ def layout_figure(parts: list[dict], units: str):
                 bbox={"boxstyle": "square,pad=0.1", "facecolor": FILL, "edgecolor": "none",
                       "alpha": 0.8})
     ax.set_xlim(-gap, w + gap)
-    ax.set_ylim(h + gap, -gap)                           # first row on top
+    ax.set_ylim(-gap, h + gap)                           # first row on top, y up
     ax.set_aspect("equal", adjustable="box")
     ax.set_axis_off()
     bar = nice_length(w / 4)
-    ax.plot([0, bar], [h + 0.6 * gap] * 2, color="k", lw=2.5, solid_capstyle="butt",
+    ax.plot([0, bar], [-0.6 * gap] * 2, color="k", lw=2.5, solid_capstyle="butt",
             clip_on=False, gid="scale-bar")
-    ax.text(0.5 * bar, h + 0.75 * gap, f"{bar:g} {units}", ha="center", va="top",
+    ax.text(0.5 * bar, -0.75 * gap, f"{bar:g} {units}", ha="center", va="top",
             fontsize=LABEL_PT)
     fig.suptitle(f"{len(parts)} developed parts laid out like a sheet (in id order), "
                  f"with rulings, id and class", fontsize=TITLE_PT - 1, y=0.995)

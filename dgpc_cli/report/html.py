@@ -18,7 +18,7 @@ from html import escape
 
 from .tables import GROUPS, item_tables, scalar_rows, status_rows
 
-__all__ = ["Header", "index_html"]
+__all__ = ["Header", "Section", "index_html", "overview_html"]
 
 STYLE = ("body{font-family:sans-serif;margin:2em;max-width:75em}"
          "img{max-width:100%;border:1px solid #ccc}"
@@ -108,5 +108,36 @@ def index_html(*, title: str, kind: str, source: str, header: Header,
     lines.append("<h2>Status</h2>")
     rows = status_rows(status)
     lines += _rows([(k, v, "") for k, v in rows]) if rows else ["<p>(none)</p>"]
+    lines += ["</body>", "</html>", ""]
+    return "\n".join(lines).encode("utf-8")
+
+
+@dataclass
+class Section:
+    """One artifact on an overview page: its ``name``, ``kind``, the sentence on what it is,
+    the ``href`` of its own page and its ``figures`` as ``(href, caption)``."""
+
+    name: str
+    kind: str
+    what: str
+    href: str
+    figures: list[tuple[str, str]] = field(default_factory=list)
+
+
+def overview_html(*, title: str, sections: list[Section]) -> bytes:
+    """The page of several artifacts (``dgpc report A B C``): per artifact, in the order given,
+    a heading, what it is, its figures and a link to its own page with its metrics."""
+    lines = ["<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">',
+             f"<title>{escape(title)}</title>", f"<style>{STYLE}</style>", "</head>", "<body>",
+             f"<h1>{escape(title)}</h1>", "<ul>"]
+    lines += [f'<li><a href="#{escape(s.name)}">{escape(s.name)}</a> ({escape(s.kind)}): '
+              f"{escape(s.what)}</li>" for s in sections]
+    lines.append("</ul>")
+    for s in sections:
+        lines += [f'<h2 id="{escape(s.name)}">{escape(s.name)} ({escape(s.kind)})</h2>',
+                  f"<p>{escape(s.what)} Metrics and inputs: "
+                  f'<a href="{escape(s.href)}">{escape(s.href)}</a>.</p>']
+        for href, caption in s.figures:
+            lines += _figure(href, caption)
     lines += ["</body>", "</html>", ""]
     return "\n".join(lines).encode("utf-8")

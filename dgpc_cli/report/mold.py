@@ -6,10 +6,11 @@ panel of the panel-to-mold map (``data.panels``: net, vertex ``rows`` and ``cols
 on the mold, ``piece``, ``flat``) covers the quads ``rows × cols`` of its design net and the
 region ``rows × angle_deg`` of the mold (every quad of the net is congruent to its quad there).
 
-* :func:`pairing_figure` (Fig. 16): for one net, the mold region of each of its panels (left)
-  and the panel on the design (right), at one scale, one colour per panel on both sides
-  (:func:`panel_colours`), each panel that faces the viewer labelled with its id; flat panels
-  hatched.
+* :func:`pairing_figure` (Fig. 16): for one net, the mold region of each of its panels (left,
+  the mold unrolled: along the parallel across, along the meridian up, so that no panel hides
+  behind another) and the panel on the design (right), at one scale, one colour per panel on
+  both sides, no two alike (:func:`panel_colours`), labelled with its id where the label fits
+  without covering another; flat panels hatched.
 * :func:`pieces_figure` (Fig. 17): the mold sector cut into its pieces (left, one colour per
   piece) and every design net with each panel in the colour of the piece it is pressed on; flat
   panels (K ≈ 0, no mold) white with a green outline.
@@ -25,7 +26,7 @@ import numpy as np
 from .camera import model_frame, outward_front, outward_normals, same_scale, standard_views
 from .render import figure
 from .scene import Polygons, Segments, grid_quads, scene_points
-from .views import LABEL_PT, TITLE_PT, view_axes
+from .views import LABEL_PT, TITLE_PT, one_scale, view_axes
 from .words import counted
 
 __all__ = ["PAIRING_SIZE", "PIECES_SIZE", "pairing_figure", "panel_colours", "pieces_figure",
@@ -69,16 +70,18 @@ def _blocks(panels: list[dict]) -> tuple[dict, dict]:
 
 
 def panel_colours(panels: list[dict]) -> dict[str, tuple]:
-    """One RGBA colour per panel id: the hue runs across the columns of its net, saturation
-    and value alternate like a chessboard, so that neighbouring panels differ."""
+    """One RGBA colour per panel id, no two panels of a net alike: the hue runs across the
+    columns of its net, the value down its rows (light at the first row, darker at the last),
+    and the saturation alternates like a chessboard, so that neighbouring panels differ."""
     row_of, col_of = _blocks(panels)
+    rows = max(len(row_of), 1)
     out = {}
     for p in panels:
         i, j = row_of[p["rows"][0]], col_of[p["net"]][p["cols"][0]]
         count = max(len(col_of[p["net"]]), 1)
         hue = 0.85 * j / max(count - 1, 1)
-        light = (i + j) % 2
-        r, g, b = colorsys.hsv_to_rgb(hue, 0.35 if light else 0.6, 0.97 if light else 0.85)
+        value = 0.98 - 0.4 * i / max(rows - 1, 1)
+        r, g, b = colorsys.hsv_to_rgb(hue, 0.3 if (i + j) % 2 else 0.65, value)
         out[p["id"]] = (r, g, b, 1.0)
     return out
 
@@ -132,17 +135,57 @@ def _facing(view, grids: dict[str, np.ndarray]) -> dict[str, bool]:
     return {pid: bool(t >= 0) for pid, t in zip(pids, toward, strict=True)}
 
 
-def _labels(ax, view, grids: dict[str, np.ndarray], colours: dict, side: str) -> None:
-    """The ids of the panels that face the viewer, at their centres, on their colour."""
-    facing = _facing(view, grids)
-    for pid, g in grids.items():
+#: Font size (points) of the panel labels; their box per character and height (points).
+PANEL_PT = 6.5
+LABEL_CHAR_PT, LABEL_HEIGHT_PT = 0.62 * PANEL_PT + 0.2, PANEL_PT + 2.5
+
+
+def _labels(ax, view, grids: dict[str, np.ndarray], colours: dict, side: str,
+            facing_only: bool = True) -> None:
+    """The ids of the panels (those that face the viewer, with ``facing_only``), at their
+    centres, on their colour: the largest panels first, each only where its box overlaps no
+    label placed before and lies inside the axes (no label covers or cuts another)."""
+    facing = _facing(view, grids) if facing_only else dict.fromkeys(grids, True)
+    ax.apply_aspect()
+    to_points = ax.transData + ax.get_figure().dpi_scale_trans.inverted()
+    box_ax = ax.get_window_extent().transformed(ax.get_figure().dpi_scale_trans.inverted())
+    placed: list[tuple[float, float, float, float]] = []
+    order = sorted(grids, key=lambda pid: -float(np.ptp(view.project(grids[pid].reshape(-1, 3)),
+                                                         axis=0).prod()))
+    for pid in order:
         if not facing[pid]:
             continue
-        x, y = view.project(g.reshape(-1, 3).mean(axis=0))
-        ax.text(x, y, _short(pid), fontsize=6.5, ha="center", va="center", zorder=10,
+        x, y = view.project(grids[pid].reshape(-1, 3).mean(axis=0))
+        cx, cy = to_points.transform((x, y))                # inches from the figure's corner
+        text = _short(pid)
+        hw = 0.5 * len(text) * LABEL_CHAR_PT / 72
+        hh = 0.5 * LABEL_HEIGHT_PT / 72
+        box = (cx - hw, cy - hh, cx + hw, cy + hh)
+        inside = box_ax.x0 <= box[0] and box[2] <= box_ax.x1 and box_ax.y0 <= box[1] \
+            and box[3] <= box_ax.y1
+        if not inside or any(box[0] < b[2] and b[0] < box[2] and box[1] < b[3] and b[1] < box[3]
+                             for b in placed):
+            continue
+        placed.append(box)
+        ax.text(x, y, text, fontsize=PANEL_PT, ha="center", va="center", zorder=10,
                 gid=f"label-{side}:{pid}",
                 bbox={"boxstyle": "square,pad=0.15", "facecolor": colours[pid],
                       "edgecolor": "none", "alpha": 0.9})
+
+
+def unrolled_grid(r: np.ndarray, h: np.ndarray, rows, angles_deg, steps: int,
+                  middle_deg: float) -> np.ndarray:
+    """The mold region of :func:`mold_grid` unrolled into the plane y = 0: x the arc along the
+    parallel from the angle ``middle_deg`` (r(u)·Δφ), z the meridian's arc length s(u) from
+    the mold's first row; every panel of the mold shows, none behind another."""
+    r, h = np.asarray(r, float), np.asarray(h, float)
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(r), np.diff(h)))])
+    u0, u1 = int(rows[0]), int(rows[1])
+    phi = np.radians(np.linspace(float(angles_deg[0]), float(angles_deg[1]), steps + 1)
+                     - middle_deg)
+    rr, ss = r[u0:u1 + 1], s[u0:u1 + 1]
+    return np.stack([rr[:, None] * phi[None, :], np.zeros((rr.size, phi.size)),
+                     np.broadcast_to(ss[:, None], (rr.size, phi.size))], axis=-1)
 
 
 def pairing_figure(f: np.ndarray, panels: list[dict], r: np.ndarray, h: np.ndarray, *,
@@ -159,26 +202,34 @@ def pairing_figure(f: np.ndarray, panels: list[dict], r: np.ndarray, h: np.ndarr
     f = np.asarray(f, float)
     design = {p["id"]: f[p["rows"][0]:p["rows"][1] + 1, p["cols"][0]:p["cols"][1] + 1]
               for p in panels}
-    mold = {p["id"]: mold_grid(r, h, p["rows"], p["angle_deg"],
-                                max(p["cols"][1] - p["cols"][0], 1)) for p in panels}
+    angles = [a for p in panels for a in p["angle_deg"]]
+    middle = 0.5 * (min(angles) + max(angles)) if angles else 0.0
+    mold = {p["id"]: unrolled_grid(r, h, p["rows"], p["angle_deg"],
+                                   max(p["cols"][1] - p["cols"][0], 1), middle)
+            for p in panels}
     fig = figure(*PAIRING_SIZE)
     sides = []
     for side, grids in (("mold", mold), ("design", design)):
         layers = _panel_layers(grids, colours, flat, "panels")
         pts = scene_points(layers)
-        side_front = outward_front(np.concatenate([grid_quads(g) for g in grids.values()]))
-        view = standard_views(pts, front=side_front)[0]
+        if side == "mold":              # the unrolled mold (plane y = 0), seen square on
+            side_front = np.array([0.0, -1.0, 0.0])
+            view = standard_views(pts, front=side_front)[2]
+        else:
+            side_front = outward_front(np.concatenate([grid_quads(g) for g in grids.values()]))
+            view = standard_views(pts, front=side_front)[0]
         sides.append((side, grids, layers, pts, side_front, view,
                       model_frame(view, pts, front=side_front)))
     frames = same_scale([s[-1] for s in sides])
-    captions = {"mold": "on the mold (surface of revolution)", "design": "on the design"}
+    captions = {"mold": "on the mold, unrolled (along the parallel × along the meridian)",
+                "design": "on the design"}
     for k, ((side, grids, layers, pts, side_front, view, _), frame) in enumerate(
             zip(sides, frames, strict=True)):
         ax = view_axes(fig, (0.01 + 0.5 * k, 0.12, 0.48, 0.76), view, layers, pts, unit=unit,
                        front=side_front, frame=frame)
         ax.set_gid(f"view-{side}")
         ax.set_title(captions[side], fontsize=LABEL_PT + 1, pad=4)
-        _labels(ax, view, grids, colours, side)
+        _labels(ax, view, grids, colours, side, facing_only=side == "design")
     legend = [Patch(facecolor="0.85", edgecolor="0.3", label="one colour per panel, on both "
                                                                 "sides"),
               Line2D([], [], color=(0.1, 0.1, 0.1), lw=0.7, label="panel outline")]
@@ -228,19 +279,12 @@ def pieces_figure(nets: list[np.ndarray], panels: list[dict], pieces: list[dict]
     pts = scene_points(layers)
     front = outward_front(layers[0].polys)
     view = standard_views(pts, front=front)[2]            # the elevation: the sector flat on
-    ax = view_axes(fig, (0.01, 0.12, 0.3, 0.76), view, layers, pts, unit=unit, front=front)
-    ax.set_gid("view-pieces")
-    ax.set_title(f"mold sector ({sector_deg:.3g}°), {counted(len(pieces), 'piece')}",
-                 fontsize=LABEL_PT + 1)
-    for p in pieces:
-        mid = mold_grid(r, h, p["rows"], (0.0, sector_deg), 2).reshape(-1, 3).mean(axis=0)
-        x, y = view.project(mid)
-        ax.text(x, y, p["id"], ha="center", va="center", fontsize=LABEL_PT, zorder=10,
-                gid=f"piece-label:{p['id']}")
+    cells = [((0.01, 0.12, 0.3, 0.76), view, layers, pts, front)]
     count = len(nets)
     ncol = 1 if count == 1 else 2
     nrow = math.ceil(count / ncol)
     width, height = 0.66 / ncol, 0.8 / nrow
+    any_flat = False
     for k, f in enumerate(nets):
         f = np.asarray(f, float)
         mine = [p for p in panels if p["net"] == k]
@@ -256,24 +300,47 @@ def pieces_figure(nets: list[np.ndarray], panels: list[dict], pieces: list[dict]
                          ids=[p["id"] for p, q in zip(mine, quads, strict=True)
                               for _ in range(len(q))])
         flat = [g for p in mine if p["flat"] for g in [grids[p["id"]]]]
-        layers = [layer]
+        design_layers = [layer]
         if flat:
-            layers.append(Segments(np.concatenate([_outline(g) for g in flat]), FLAT_EDGE,
-                                   "flat-outlines", linewidth=1.2))
-        pts = f.reshape(-1, 3)
-        front = outward_front(grid_quads(f))
-        view = standard_views(pts, front=front)[0]
+            any_flat = True
+            design_layers.append(Segments(np.concatenate([_outline(g) for g in flat]),
+                                          FLAT_EDGE, "flat-outlines", linewidth=1.2))
+        net_pts = f.reshape(-1, 3)
+        net_front = outward_front(grid_quads(f))
         row, col = divmod(k, ncol)
         rect = (0.33 + col * width, 0.12 + (nrow - 1 - row) * height, width - 0.01,
                 height - 0.01)
-        ax = view_axes(fig, rect, view, layers, pts, unit=unit, front=front)
-        ax.set_gid(f"view-design-{k + 1}")
-        n_flat = sum(p["flat"] for p in mine)
-        ax.set_title(f"{names[k]}: {len(mine)} panels, {n_flat} flat", fontsize=LABEL_PT)
+        cells.append((rect, standard_views(net_pts, front=net_front)[0], design_layers,
+                      net_pts, net_front))
+    # every view at one scale, one scale bar (under the sector) for all
+    frames = one_scale(fig, [c[0] for c in cells],
+                       [model_frame(v, p, front=fr) for _, v, _, p, fr in cells])
+    for k, ((rect, v, lay, p, fr), frame) in enumerate(zip(cells, frames, strict=True)):
+        ax = view_axes(fig, rect, v, lay, p, unit=unit, front=fr, frame=frame, bar=k == 0)
+        if k == 0:
+            ax.set_gid("view-pieces")
+            ax.set_title(f"sector {sector_deg:.3g}°, {counted(len(pieces), 'piece')}",
+                         fontsize=LABEL_PT + 1)
+            for piece in pieces:
+                mid = mold_grid(r, h, piece["rows"], (0.0, sector_deg),
+                                2).reshape(-1, 3).mean(axis=0)
+                x, y = v.project(mid)
+                ax.text(x, y, piece["id"], ha="center", va="center", fontsize=LABEL_PT,
+                        zorder=10, gid=f"piece-label:{piece['id']}")
+            continue
+        mine = [q for q in panels if q["net"] == k - 1]
+        ax.set_gid(f"view-design-{k}")
+        n_flat = sum(q["flat"] for q in mine)
+        ax.set_title(f"{names[k - 1]}: {len(mine)} panels, {n_flat} flat", fontsize=LABEL_PT)
     legend = [Patch(facecolor=colours[p["id"]], edgecolor="0.3", label=f"piece {p['id']}")
               for p in pieces[:8]]
-    legend.append(Line2D([], [], color=FLAT_EDGE, lw=1.5, label="flat panel (K ≈ 0): no mold"))
+    if any_flat:                                          # only what is drawn
+        legend.append(Line2D([], [], color=FLAT_EDGE, lw=1.5,
+                             label="flat panel (K ≈ 0): no mold"))
+    if not covered.all():
+        legend.append(Patch(facecolor=WHITE, edgecolor="0.3", label="mold rows no panel needs"))
     fig.legend(handles=legend, loc="lower center", bbox_to_anchor=(0.5, 0.005),
                ncol=min(len(legend), 5), fontsize=LABEL_PT)
+    title = f"{title} (every view at one scale)"
     fig.suptitle(title, fontsize=TITLE_PT, y=0.985)
     return fig

@@ -15,8 +15,12 @@ the net, translucent grey where the net covers it and orange where it does not
 The strain figure (:func:`strain_figure`) colours the area around every vertex (its quarter of
 each adjacent quad) with the vertex's ``|λ1| + |λ2|`` and draws at every interior vertex the
 principal directions of the strain tensor D (§6.1) as a cross: one arm along each eigenvector,
-as long as its eigenvalue's magnitude (the largest arm 0.9 mean edges), black for stretch (λ > 0)
-and blue for compression (λ < 0). Boundary vertices have one-sided tensors and no glyph.
+as long as its eigenvalue's magnitude, on a scale that makes the 75th percentile of the
+vertices' larger magnitudes 0.9 mean edges long (a few spikes at the corners do not shrink the
+rest to dots; longer arms are capped at 1.2 mean edges), black for stretch (λ > 0) and blue
+for compression (λ < 0). Boundary vertices have one-sided tensors and no glyph. The handles of
+the optimization are marked (magenta crosses), and the plan's cell shows the start shape (the
+input net, grey) with each handle's move from its start to its target, through the same camera.
 """
 
 from __future__ import annotations
@@ -42,8 +46,11 @@ STRETCH, COMPRESSION = (0.0, 0.0, 0.0, 1.0), (0.0, 0.25, 0.95, 1.0)
 #: Smallest span of a colour bar of a one-signed field, relative to its middle value: a field
 #: constant to within it (a developable's strip width) is one colour, its ticks plain numbers.
 MIN_SPAN = 1e-3
-#: Length of the largest glyph arm, in mean edge lengths.
-GLYPH_ARM = 0.9
+#: Length of a glyph arm at the :data:`GLYPH_PERCENTILE` of the magnitudes, and the cap of
+#: every arm, in mean edge lengths.
+GLYPH_ARM, GLYPH_CAP, GLYPH_PERCENTILE = 0.9, 1.2, 75
+#: Colour of the handles' marks and moves; of the start shape's edges.
+HANDLE, START = (0.85, 0.0, 0.75, 1.0), (0.35, 0.35, 0.35, 0.8)
 
 
 @dataclass
@@ -189,25 +196,51 @@ def strain_glyphs(f: np.ndarray, D: np.ndarray) -> tuple[Segments, Segments]:
     e1 = c * Tu[inner] + s * Tv[inner]
     e2 = -s * Tu[inner] + c * Tv[inner]
     l1, l2 = lam1[inner], lam2[inner]
-    big = float(np.nanmax(np.abs(np.concatenate([l1.ravel(), l2.ravel()])), initial=0.0))
-    edges = np.concatenate([np.linalg.norm(np.diff(f, axis=0), axis=-1).ravel(),
-                            np.linalg.norm(np.diff(f, axis=1), axis=-1).ravel()])
-    scale = 0.5 * GLYPH_ARM * float(edges.mean()) / big if big > 0 else 0.0
+    mags = np.fmax(np.abs(l1), np.abs(l2)).ravel()          # each vertex's longer arm
+    mags = mags[np.isfinite(mags) & (mags > 0)]
+    big = float(np.percentile(mags, GLYPH_PERCENTILE)) if mags.size else 0.0
+    edge = _mean_edge(f)
+    scale = 0.5 * GLYPH_ARM * edge / big if big > 0 else 0.0
     centre = f[inner]
     arms = []
     for k, (lam, e) in enumerate(((l1, e1), (l2, e2)), start=1):
-        half = np.nan_to_num(scale * np.abs(lam))[..., None] * np.nan_to_num(e)
+        length = np.minimum(np.nan_to_num(scale * np.abs(lam)), 0.5 * GLYPH_CAP * edge)
+        half = length[..., None] * np.nan_to_num(e)
         segs = np.stack([centre - half, centre + half], axis=-2).reshape(-1, 2, 3)
         colours = np.where((np.nan_to_num(lam) >= 0).ravel()[:, None], STRETCH, COMPRESSION)
-        arms.append(Segments(segs, colours, f"strain-glyphs-{k}", linewidth=0.9))
+        arms.append(Segments(segs, colours, f"strain-glyphs-{k}", linewidth=1.5))
     return arms[0], arms[1]
 
 
+def _mean_edge(f: np.ndarray) -> float:
+    edges = np.concatenate([np.linalg.norm(np.diff(f, axis=0), axis=-1).ravel(),
+                            np.linalg.norm(np.diff(f, axis=1), axis=-1).ravel()])
+    return float(edges.mean())
+
+
+def _grid_edges(f: np.ndarray) -> np.ndarray:
+    """Every edge ``(k, 2, 3)`` of the grid ``f (m, n, 3)``."""
+    u = np.stack([f[:-1], f[1:]], axis=2).reshape(-1, 2, 3)
+    v = np.stack([f[:, :-1], f[:, 1:]], axis=2).reshape(-1, 2, 3)
+    return np.concatenate([u, v])
+
+
+def handle_marks(points: np.ndarray, size: float) -> Segments:
+    """A three-armed cross ``size`` long at each of ``points (k, 3)`` (gid ``handles``)."""
+    p = np.asarray(points, float).reshape(-1, 3)
+    axes = 0.5 * size * np.eye(3)
+    segs = np.stack([p[:, None] - axes, p[:, None] + axes], axis=2).reshape(-1, 2, 3)
+    return Segments(segs, HANDLE, "handles", linewidth=2.2)
+
+
 def strain_figure(f: np.ndarray, f0: np.ndarray, *, title: str, unit: str,
-                  up=(0.0, 0.0, 1.0), front=None):
+                  up=(0.0, 0.0, 1.0), front=None, handles: dict | None = None):
     """Paper Fig. 13: the strain of the net ``f`` against ``f0`` (both ``(m, n, 3)``), the area
     around each vertex coloured by ``|λ1| + |λ2|`` (gid ``strain``) under the principal
-    directions at the interior vertices (:func:`strain_glyphs`)."""
+    directions at the interior vertices (:func:`strain_glyphs`); ``handles`` (the net's
+    ``data.handles``: flat vertex ``ids``) marked on the net and, in the start shape's view
+    (``view-second``), on ``f0`` with their moves to where they are on ``f`` (gid
+    ``handle-moves``)."""
     from matplotlib import colormaps
     from matplotlib.colors import Normalize
     from matplotlib.lines import Line2D
@@ -227,12 +260,24 @@ def strain_figure(f: np.ndarray, f0: np.ndarray, *, title: str, unit: str,
               Polygons(grid_quads(f), np.zeros((len(grid_quads(f)), 4)), "net-edges",
                        edgecolor=(0.3, 0.3, 0.3, 0.5), linewidth=0.25),
               arm1, arm2]
-    legend = [Line2D([], [], color=STRETCH, lw=1.2, label="principal direction, stretch"),
-              Line2D([], [], color=COMPRESSION, lw=1.2,
+    start = [Segments(_grid_edges(np.asarray(f0, float)), START, "start-net", linewidth=0.5)]
+    legend = [Line2D([], [], color=STRETCH, lw=1.5, label="principal direction, stretch"),
+              Line2D([], [], color=COMPRESSION, lw=1.5,
                      label="principal direction, compression")]
+    ids_h = [int(i) for i in (handles or {}).get("ids", [])]
+    if ids_h:
+        size = 0.8 * _mean_edge(f)
+        now, then = f.reshape(-1, 3)[ids_h], np.asarray(f0, float).reshape(-1, 3)[ids_h]
+        layers.append(handle_marks(now, size))
+        start += [Segments(np.stack([then, now], axis=1), HANDLE, "handle-moves",
+                           linewidth=1.5), handle_marks(now, size)]
+        legend.append(Line2D([], [], color=HANDLE, lw=2.2,
+                             label=f"handles ({len(ids_h)}): start → target"))
+    points = np.concatenate([f.reshape(-1, 3), np.asarray(f0, float).reshape(-1, 3)])
     return views_figure(layers, title=title, unit=unit, up=up, front=front,
                         colour_bar=ColourBar(norm, cmap, "strain |λ1| + |λ2| (dimensionless)"),
-                        legend=legend)
+                        legend=legend, points=points,
+                        instead_of_plan=("start shape (input net)", start))
 
 
 def laths_figure(families: list[list[np.ndarray]], names: list[str], *, title: str,

@@ -20,7 +20,7 @@ from .camera import model_frame, standard_views
 from .render import figure
 from .scene import draw, scene_points
 
-__all__ = ["VIEWS_SIZE", "ColourBar", "nice_length", "view_axes", "views_figure"]
+__all__ = ["VIEWS_SIZE", "ColourBar", "nice_length", "one_scale", "view_axes", "views_figure"]
 
 #: Size of the figure (inches).
 VIEWS_SIZE = (10.0, 6.4)
@@ -74,10 +74,10 @@ def scale_bar(ax, frame, unit: str) -> None:
 
 
 def view_axes(fig, rect, view, layers: list, points, *, unit: str, up=(0.0, 0.0, 1.0),
-              front=None, frame=None):
+              front=None, frame=None, bar: bool = True):
     """Axes at ``rect`` (figure coordinates; gid ``view-<name>``) showing ``layers`` through
     ``view``, spanning exactly the view's frame on ``points`` (or ``frame``; equal scales),
-    with the view's title above and a scale bar in ``unit`` under them."""
+    with the view's title above and (``bar``) a scale bar in ``unit`` under them."""
     ax = fig.add_axes(rect)
     ax.set_gid(f"view-{view.name}")
     draw(ax, view, layers)
@@ -88,8 +88,24 @@ def view_axes(fig, rect, view, layers: list, points, *, unit: str, up=(0.0, 0.0,
     ax.set_aspect("equal", adjustable="box", anchor="C")
     ax.set_axis_off()
     ax.set_title(view.title, fontsize=LABEL_PT, pad=3)
-    scale_bar(ax, frame, unit)
+    if bar:
+        scale_bar(ax, frame, unit)
     return ax
+
+
+def one_scale(fig, rects: list, frames: list) -> list[tuple[float, float, float, float]]:
+    """The ``frames`` widened about their centres so that, drawn into the axes ``rects``
+    (figure coordinates) of ``fig``, they all have one scale (the smallest that shows each
+    whole): one scale bar then speaks for every view."""
+    W, H = fig.get_size_inches()
+    per_inch = max(max((f[1] - f[0]) / (r[2] * W), (f[3] - f[2]) / (r[3] * H))
+                   for f, r in zip(frames, rects, strict=True))
+    out = []
+    for (x0, x1, y0, y1), r in zip(frames, rects, strict=True):
+        cx, cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+        hw, hh = 0.5 * per_inch * r[2] * W, 0.5 * per_inch * r[3] * H
+        out.append((cx - hw, cx + hw, cy - hh, cy + hh))
+    return out
 
 
 def _cells(bottom: float) -> dict[str, tuple[float, float, float, float]]:
@@ -104,14 +120,26 @@ def _cells(bottom: float) -> dict[str, tuple[float, float, float, float]]:
 
 def views_figure(layers: list, *, title: str, unit: str, up=(0.0, 0.0, 1.0), front=None,
                  colour_bar: ColourBar | None = None, legend: list | None = None,
-                 plan_title: str = "plan (from above)", points=None):
+                 plan_title: str = "plan (from above)", points=None,
+                 instead_of_plan: tuple[str, list] | None = None):
     """The figure of the scene ``layers`` (:mod:`.scene`) in the three standard views, framed
     on ``points`` (default: every point of the layers) seen with ``up`` and ``front``
-    (:func:`~dgpc_cli.report.camera.standard_views`); ``legend`` a list of matplotlib handles."""
+    (:func:`~dgpc_cli.report.camera.standard_views`); ``legend`` a list of matplotlib handles.
+    ``instead_of_plan = (title, layers)``: the plan's cell shows those layers through the
+    axonometric camera instead (gid ``view-second``), framed on the same points."""
+    from dataclasses import replace
+
     pts = scene_points(layers) if points is None else np.asarray(points, float).reshape(-1, 3)
     fig = figure(*VIEWS_SIZE)
     cells = _cells(BOTTOM + (BAR_SPACE if colour_bar is not None or legend else 0.0))
-    for view in standard_views(pts, up, front, plan_title=plan_title):
+    views = standard_views(pts, up, front, plan_title=plan_title)
+    for view in views:
+        if view.name == "plan" and instead_of_plan is not None:
+            second_title, second_layers = instead_of_plan
+            second = replace(views[0], name="second", title=second_title)
+            view_axes(fig, cells["plan"], second, second_layers, pts, unit=unit, up=up,
+                      front=front)
+            continue
         view_axes(fig, cells[view.name], view, layers, pts, unit=unit, up=up, front=front)
     fig.suptitle(title, fontsize=TITLE_PT, y=0.985)
     if colour_bar is not None:

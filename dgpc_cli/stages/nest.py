@@ -178,16 +178,21 @@ def nest_parts(flat_parts: list[dict], sheet: Sheet, rotations: list[float], *,
     return NestResult(parts, placements, sheet, list(rotations), util, overall, info)
 
 
-def sheet_drawings(result: NestResult) -> list[tuple[bytes, bytes, bytes, list]]:
-    """Per sheet ``(dxf, svg, png, labels)``: the bytes of its DXF and previews, and the labels
-    in placement order (:class:`~dgpc_cli.nesting.labels.Label`)."""
+def sheet_drawings(result: NestResult, *, border: bool = False, label_style: str = "text"
+                   ) -> list[tuple[bytes, bytes, bytes, list]]:
+    """Per sheet ``(dxf, svg, png, labels)``: the bytes of its DXF (with the sheet's
+    ``border`` or not, labels in ``label_style``) and previews (titled, the sheet outlined),
+    and the labels in placement order (:class:`~dgpc_cli.nesting.labels.Label`)."""
     out = []
+    W, H = result.sheet.width, result.sheet.height
     for s in range(result.sheet_count):
         placed = [placed_part(result.parts[p.index], p.rotation, p.translation)
                   for p in result.placements if p.sheet == s]
-        drawing, labels = sheet_drawing(result.sheet.width, result.sheet.height, placed)
+        drawing, labels = sheet_drawing(W, H, placed, border=border, label_style=label_style)
         dxf = drawing.to_bytes(f"sheet {sheet_id(s)}")
-        out.append((dxf, *previews(dxf), labels))
+        title = (f"{sheet_id(s)} ({s + 1} of {result.sheet_count}): sheet {W:g} × {H:g} mm, "
+                 f"{len(placed)} parts, {100 * result.utilization[s]:.1f} % used")
+        out.append((dxf, *previews(dxf, title=title, frame=(W, H)), labels))
     return out
 
 
@@ -247,7 +252,8 @@ def mold_map(mold, scale: float) -> tuple[bytes, bytes]:
     k = scale * mm_per_unit(mold.units)
     dxf = mold_map_drawing(k * mold.r, k * mold.h, mold.data["sector"]["angle_deg"],
                            mold.data["pieces"], mold.data["panels"]).to_bytes("mold map")
-    (png,) = previews(dxf, ("png",))
+    # twice as wide as a sheet's preview: the table's ids are read there
+    (png,) = previews(dxf, ("png",), title="panel-to-mold map (mm)", width=20.0)
     return dxf, png
 
 

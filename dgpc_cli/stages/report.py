@@ -41,11 +41,11 @@ from pathlib import Path
 import numpy as np
 
 from dgpc_cli.io.artifact import listed_path, resolve_input, sha256_file
-from dgpc_cli.report.html import Header, index_html
+from dgpc_cli.report.html import Header, Section, index_html, overview_html
 from dgpc_cli.report.render import png_bytes, style
 from dgpc_cli.report.words import counted
 
-__all__ = ["report_files"]
+__all__ = ["overview_files", "report_files"]
 
 log = logging.getLogger(__name__)
 
@@ -182,9 +182,12 @@ def _net_page(json_path: Path) -> Page:
     if against is not None:
         figs.append(("strain", "Strain against the input net of the isometric optimization "
                                "(paper Fig. 13): principal directions at the interior vertices, "
-                               "as long as their eigenvalues, over the colour of |λ1| + |λ2|.",
+                               "as long as their eigenvalues (the longest capped), over the "
+                               "colour of |λ1| + |λ2|, the handles marked; beside it the start "
+                               "shape with each handle's move.",
                      lambda: fig.strain_figure(f, against.f, title="strain against the input "
-                                                                   "net", **view)))
+                                                                   "net",
+                                               handles=net.data.get("handles"), **view)))
     if axis is not None:
         metric = _recorded_clairaut(net.metrics) or clairaut(f, axis)
         figs.append(("clairaut", "Clairaut's relation (9): r cos α minus its mean along each "
@@ -203,17 +206,38 @@ def _net_page(json_path: Path) -> Page:
 # strips, flat parts, laths
 
 
+def _input_up(inputs: dict, json_path: Path):
+    """The axis direction of the input net (``inputs.net``) when it records one, else z."""
+    from dgpc_cli.io.net import read_net
+    from dgpc_cli.stages.inspect import recorded_axis
+
+    record = inputs.get("net")
+    if isinstance(record, dict) and "path" in record:
+        path = resolve_input(record, json_path)
+        if path.is_file():
+            axis = recorded_axis(read_net(path))
+            if axis is not None:
+                return axis[1]
+    return (0.0, 0.0, 1.0)
+
+
 def _strips_page(json_path: Path) -> Page:
     from dgpc_cli.io.strips import read_strips
+    from dgpc_cli.report.camera import outward_front
     from dgpc_cli.report.net import field_figure, width_per_quad
+    from dgpc_cli.report.scene import grid_quads
 
     art = read_strips(json_path)
     grids = [np.stack([np.asarray(A, float), np.asarray(B, float)], axis=1)
              for A, B in art.geometry]
+    # seen from where the net's figures are seen: its axis up, from the outside of the strips
+    up = _input_up(art.inputs, json_path)
+    front = outward_front(np.concatenate([grid_quads(g) for g in grids]), up)
     figs = [("width", "The planar-quad strips, each quad coloured by the strip width.",
              lambda: field_figure(grids, [width_per_quad(g) for g in grids],
                                   title=f"{len(grids)} planar-quad strips",
-                                  label=f"strip width [{art.units}]", unit=art.units))]
+                                  label=f"strip width [{art.units}]", unit=art.units,
+                                  up=up, front=front))]
     figs += _fabrication_figures(art, json_path)
     header = Header(f"{len(grids)} geodesic strips made of planar quads "
                     "(dgpc planarize-strips).", _input_notes(art.inputs, json_path))
@@ -370,10 +394,18 @@ def _layer_legend(layers: dict, what: dict) -> list[tuple[str, tuple, str]]:
 
 #: What each layer of a cut sheet and of the mold map holds.
 SHEET_LEGEND = {"CUT": "outlines, cut", "SCORE": "rulings, score or bend",
-                "LABEL": "part ids", "SHEET": "sheet border, not cut"}
+                "LABEL": "part ids (text)", "ENGRAVE": "part ids, engraved",
+                "SHEET_BORDER": "sheet border (--border)"}
 MAP_LEGEND = {"PROFILE": "meridian profile", "AXIS": "axis", "SECTOR": "developed sector",
               "PIECES": "mold pieces", "PANELS": "where panels are pressed",
               "LABEL": "labels", "TABLE": "table"}
+
+
+def _dxf_layers(path: Path) -> set[str]:
+    """The layers a DXF draws on (its legend lists those only)."""
+    import ezdxf
+
+    return {e.dxf.layer for e in ezdxf.readfile(path).modelspace()}
 
 
 def _sheets_page(json_path: Path) -> Page:
@@ -386,22 +418,24 @@ def _sheets_page(json_path: Path) -> Page:
     data = art.data
     W, H, unit = data["sheet"]["width"], data["sheet"]["height"], data["units"]
     count = len(data["sheets"])
-    legend = _layer_legend(SHEET_LAYERS, SHEET_LEGEND)
     figs = []
     for i, sheet in enumerate(data["sheets"]):
         png = art.file(sheet["png"]).read_bytes()
+        drawn = _dxf_layers(art.file(sheet["dxf"]))
+        legend = _layer_legend(SHEET_LAYERS, {k: v for k, v in SHEET_LEGEND.items()
+                                              if k in drawn})
         title = (f"{sheet['id']} ({i + 1} of {count}), {W:g} × {H:g} {unit}: "
                  f"{counted(len(sheet['parts']), 'part')}, "
                  f"{100 * sheet['utilization']:.1f} % used")
-        figs.append((f"sheet{i + 1:02d}", f"Sheet {sheet['id']}: the cut sheet's preview "
-                                          "(written by dgpc nest) with its layers.",
-                     lambda png=png, title=title: preview_figure(png, legend, title=title)))
+        # the preview has its title (sheet, size, parts, use) and scale bar: none added here
+        figs.append((f"sheet{i + 1:02d}", f"Sheet {title}: the cut sheet's preview (written "
+                                          "by dgpc nest) with its layers.",
+                     lambda png=png, legend=legend: preview_figure(png, legend)))
     if "moldmap_png" in data["files"]:
         png = art.file("moldmap_png").read_bytes()
         figs.append(("moldmap", "The panel-to-mold map sheet (written by dgpc nest --mold) "
                                 "with its layers.",
-                     lambda: preview_figure(png, _layer_legend(MAP_LAYERS, MAP_LEGEND),
-                                            title="panel-to-mold map")))
+                     lambda: preview_figure(png, _layer_legend(MAP_LAYERS, MAP_LEGEND))))
     header = Header(f"{counted(len(data['placements']), 'part')} nested on "
                     f"{counted(count, 'sheet')} of {W:g} × {H:g} {unit}, "
                     f"{100 * art.metrics.get('utilization', 0.0):.1f} % used (dgpc nest).",
@@ -435,12 +469,37 @@ def previous_report_files(prefix: Path) -> list[Path]:
     return [html_path.parent / n for n in sorted(names) if n.startswith(start)]
 
 
-def report_files(json_path: Path, kind: str, prefix: Path) -> dict[Path, bytes]:
+def overview_files(artifacts: list[tuple[Path, str]], prefix: Path) -> dict[Path, bytes]:
+    """Every file of the report of several artifacts ``(json_path, kind)`` for ``-o PREFIX``:
+    each artifact's report under ``PREFIX-<its name>`` (:func:`report_files`), and last
+    ``PREFIX-index.html``, one page showing all their figures, linking each one's own page."""
+    text = _prefix_text(prefix)
+    names = [p.stem for p, _ in artifacts]
+    if len(set(names)) < len(names):            # the same name in two folders: number them
+        names = [f"{k + 1}-{n}" for k, n in enumerate(names)]
+    files: dict[Path, bytes] = {}
+    sections = []
+    for (json_path, kind), name in zip(artifacts, names, strict=True):
+        page = PAGES[kind](json_path)
+        sub = Path(f"{text}-{name}")
+        files.update(report_files(json_path, kind, sub, page=page))
+        figures = [(Path(f"{sub}-{fig}.png").name, caption)
+                   for fig, caption, _ in page.figures]
+        sections.append(Section(name, kind, page.header.what,
+                                Path(f"{sub}-index.html").name, figures))
+    folder_title = Path(text).parent.name or "dgpc"
+    files[Path(text + "-index.html")] = overview_html(
+        title=f"dgpc report: {folder_title} ({', '.join(names)})", sections=sections)
+    return files
+
+
+def report_files(json_path: Path, kind: str, prefix: Path, page: Page | None = None
+                 ) -> dict[Path, bytes]:
     """Every file of the report of the ``kind`` artifact ``json_path`` for ``-o PREFIX``:
     ``PREFIX-<figure>.png`` and last ``PREFIX-index.html`` (nothing written)."""
     text = _prefix_text(prefix)
     html_path = Path(text + "-index.html")
-    page = PAGES[kind](json_path)
+    page = PAGES[kind](json_path) if page is None else page
     files: dict[Path, bytes] = {}
     links = []
     convergence = None
