@@ -23,6 +23,7 @@ from dgpc_cli.strips.rulings import (
     strip_boundaries,
     strip_normals,
 )
+from dgpc_cli.strips.template import SEAM_WEIGHT, closest_on_polylines, fit_template
 from dgpc_cli.strips.trim import strip_points, trim_strip
 
 log = logging.getLogger(__name__)
@@ -157,6 +158,68 @@ def planarize_strips(f: np.ndarray, columns: list[int], *, flat_angle: float = F
         if progress is not None:
             progress(1)
     return out
+
+
+def template_qualifies(f: np.ndarray, columns: list[int]) -> str | None:
+    """None when the strips ``columns`` of the net ``f (m, n, 3)`` can share one template, else
+    why not (one line): the net must pass ``extract-mold``'s own check (isometric to a surface
+    of revolution: equation (5), every panel on its mold patch) and its strips must be equally
+    wide (7) (strips of unequal widths c_j d(u) are not congruent)."""
+    from dgpc_cli.mold.profile import column_factors, net_widths
+    from dgpc_cli.stages.extract_mold import DEFAULT_TOL, extract_mold
+
+    try:
+        extract_mold([("the net", f)])
+    except DgpcError as exc:
+        return exc.reason
+    wd = net_widths(f)
+    c = column_factors(wd.w, wd.d)[columns]
+    spread = float((c.max() - c.min()) / c.mean())
+    if spread > DEFAULT_TOL:
+        return (f"its strips are not equally wide (widths differ by {spread:.2e} relative, "
+                f"more than {DEFAULT_TOL:g}), so they are not congruent")
+    return None
+
+
+def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
+                    seam_weight: float = SEAM_WEIGHT) -> tuple[list[PlanarStrip], dict]:
+    """The planar strips ``strips`` (per-strip, of the net ``f`` in mm) replaced by exact
+    bendings of one template (:mod:`dgpc_cli.strips.template`), and the template's record
+    (variant, start, fit outcome, its 2-D boundaries in ``units``).
+
+    The fit starts once from the per-strip strips and once from the net's own strips (rulings
+    on the v-edges); the fit that stays closer to the net (largest deviation) is kept.
+    """
+    f = np.asarray(f, dtype=float)
+    columns = [s.v for s in strips]
+    cols = np.asarray(columns)
+    P, Q = np.moveaxis(f[:, cols], 1, 0), np.moveaxis(f[:, cols + 1], 1, 0)
+    starts = {"per-strip": (np.stack([s.A for s in strips]), np.stack([s.B for s in strips])),
+              "net": (P, Q)}
+    best = None
+    for name, (A0, B0) in starts.items():
+        fit = fit_template(f, columns, A0, B0, seam_weight=seam_weight)
+        worst = max(deviation(a, b, p, q) / strip_width(p, q)
+                    for a, b, p, q in zip(fit.A, fit.B, P, Q, strict=True))
+        log.debug("template fit from the %s start: largest deviation %.3g of the width", name,
+                  worst)
+        if best is None or worst < best[0]:
+            best = (worst, name, fit)
+    _, start, fit = best
+    _, _, sA = closest_on_polylines(fit.A, P)
+    _, _, sB = closest_on_polylines(fit.B, Q)
+    out = []
+    for i, strip in enumerate(strips):
+        a, b = fit.A[i], fit.B[i]
+        out.append(dataclasses.replace(
+            strip, A=a, B=b, params=np.stack([sA[i], sB[i]], axis=-1),
+            planarity=float(np.max(planarity_defect(a, b))),
+            deviation=deviation(a, b, P[i], Q[i]) / strip.width,
+            rulings_ordered=_forward(a, P[i]) and _forward(b, Q[i])))
+    record = {"variant": fit.variant, "start": start, "status": fit.status,
+              "iterations": fit.iterations, "A": from_mm(fit.template[:, 0], units),
+              "B": from_mm(fit.template[:, 1], units)}
+    return out, record
 
 
 def strips_metrics(strips: list[PlanarStrip]) -> dict:
