@@ -53,12 +53,12 @@ log = logging.getLogger(__name__)
 #: The variants of the fit (see the module).
 VARIANTS = ("shared-vertices",)
 #: Weight schedule of the closeness of the strips to the net (the hard terms have weight 1).
-CLOSENESS_WEIGHT = Schedule.constant(1e-4)
+CLOSENESS_WEIGHT = Schedule.constant(1e-3)
 #: Weight of the boundary vertices' distance across their net geodesic.
-ACROSS_WEIGHT = Schedule.constant(1e-4)
+ACROSS_WEIGHT = Schedule.constant(1e-3)
 #: Weights of the fairness of the ruling vectors and of the slides along the geodesics.
-RULING_FAIRNESS = Schedule.constant(1e-6)
-SLIDE_FAIRNESS = Schedule.constant(1e-6)
+RULING_FAIRNESS = Schedule.constant(1e-7)
+SLIDE_FAIRNESS = Schedule.constant(1e-8)
 #: Default weight of the seam term (off: see the README's trade-off table).
 SEAM_WEIGHT = 0.0
 #: Tolerance (hard residual at mean edge length 1) and iteration limit of the fit.
@@ -229,6 +229,7 @@ def _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight):
              ACROSS_WEIGHT, False),
         Term("ruling_fairness", lambda x: ruling_fairness(x, layout), RULING_FAIRNESS, False,
              True),
+
         Term("slide_fairness", lambda x: slide_fairness(x, layout, c, t), SLIDE_FAIRNESS,
              False, True)]
     if seam_dirs is not None:

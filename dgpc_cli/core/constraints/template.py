@@ -199,3 +199,4 @@ def plane_offsets(x, layout: StripSetLayout, samples, points, normals):
     rows = np.arange(phi.size)[:, None, None]
     return phi, jacobian(phi.size, layout.size,
                          (rows, layout.f_cols(ids), coefficients[:, :, None] * n[:, None, :]))
+
