@@ -18,6 +18,7 @@ from dgpc_cli.io.strips import StripsArtifact, strips_files
 from dgpc_cli.stages.planarize import (
     FLAT_ANGLE,
     POLISH_ABOVE,
+    RULING_FAIRNESS,
     SEAM_WEIGHT,
     parse_strip_range,
     planarize_strips,
@@ -64,12 +65,17 @@ def _outline(net, json_path):
               show_default=True,
               help="Template fit: weight of the seams (neighbouring strips' boundaries on the "
                    "same geodesic, no step or gap) against the closeness to the net.")
+@click.option("--ruling-fairness", type=FiniteFloat(min=0), default=RULING_FAIRNESS,
+              show_default=True,
+              help="Template fit: weight of the rulings' smoothness (second differences of the "
+                   "ruling vectors): higher keeps neighbouring score lines closer to parallel, "
+                   "lower lets the strips follow the net more closely.")
 @output_opt
 @force_opt
 @format_opt
 @click.pass_context
 def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, seam_weight,
-                         output, force, fmt):
+                         ruling_fairness, output, force, fmt):
     """Turn the geodesic strips of the net STEM into discrete developable strips (paper §6.2.4).
 
     Rulings follow the cross products N × N1 of neighbouring normals (averaged across flat
@@ -100,7 +106,8 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
         log.info("planarize-strips: one template for all strips (the net is isometric to a "
                  "surface of revolution with equal strip widths)")
         strips, template = template_strips(net.f_mm, strips, net.units,
-                                           seam_weight=seam_weight)
+                                           seam_weight=seam_weight,
+                                           ruling_fairness=ruling_fairness)
     elif not per_strip:
         log.warning("planarize-strips: every strip on its own, no shared template: the net %s",
                     reason)
@@ -122,7 +129,7 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
         parameters={"strips": [columns[0], columns[-1]], "flat_angle": flat_angle,
                     "polish_above": POLISH_ABOVE, "trim": trim,
                     "method": "per-strip" if template is None else "template",
-                    "seam_weight": seam_weight},
+                    "seam_weight": seam_weight, "ruling_fairness": ruling_fairness},
         template=template,
         inputs={"net": file_input(json_path, out_json.resolve().parent)},
         metrics=strips_metrics(strips),

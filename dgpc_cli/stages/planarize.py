@@ -23,7 +23,12 @@ from dgpc_cli.strips.rulings import (
     strip_boundaries,
     strip_normals,
 )
-from dgpc_cli.strips.template import SEAM_WEIGHT, closest_on_polylines, fit_template
+from dgpc_cli.strips.template import (
+    RULING_FAIRNESS,
+    SEAM_WEIGHT,
+    closest_on_polylines,
+    fit_template,
+)
 from dgpc_cli.strips.trim import strip_points, trim_strip
 
 log = logging.getLogger(__name__)
@@ -182,7 +187,8 @@ def template_qualifies(f: np.ndarray, columns: list[int]) -> str | None:
 
 
 def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
-                    seam_weight: float = SEAM_WEIGHT) -> tuple[list[PlanarStrip], dict]:
+                    seam_weight: float = SEAM_WEIGHT, ruling_fairness: float = RULING_FAIRNESS
+                    ) -> tuple[list[PlanarStrip], dict]:
     """The planar strips ``strips`` (per-strip, of the net ``f`` in mm) replaced by exact
     bendings of one template (:mod:`dgpc_cli.strips.template`), and the template's record
     (variant, start, fit outcome, its 2-D boundaries in ``units``).
@@ -198,7 +204,8 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
               "net": (P, Q)}
     best = None
     for name, (A0, B0) in starts.items():
-        fit = fit_template(f, columns, A0, B0, seam_weight=seam_weight)
+        fit = fit_template(f, columns, A0, B0, seam_weight=seam_weight,
+                           ruling_fairness=ruling_fairness)
         worst = max(deviation(a, b, p, q) / strip_width(p, q)
                     for a, b, p, q in zip(fit.A, fit.B, P, Q, strict=True))
         log.debug("template fit from the %s start: largest deviation %.3g of the width", name,

@@ -57,7 +57,7 @@ CLOSENESS_WEIGHT = Schedule.constant(1e-3)
 #: Weight of the boundary vertices' distance across their net geodesic.
 ACROSS_WEIGHT = Schedule.constant(1e-3)
 #: Weights of the fairness of the ruling vectors and of the slides along the geodesics.
-RULING_FAIRNESS = Schedule.constant(1e-7)
+RULING_FAIRNESS = 1e-7
 SLIDE_FAIRNESS = Schedule.constant(1e-8)
 #: Default weight of the seam term (off: see the README's trade-off table).
 SEAM_WEIGHT = 0.0
@@ -208,7 +208,7 @@ def _frames(P, Q, X, is_b):
     return c, t, unit(np.cross(n, t))
 
 
-def _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight):
+def _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight, ruling_weight):
     """The soft terms and regularizers, their frames (closest points on the geodesics, tangent
     planes of the net at the samples' feet) taken at ``x``: held fixed for one round."""
     m, S = layout.m, layout.S
@@ -227,8 +227,8 @@ def _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight):
              CLOSENESS_WEIGHT, False),
         Term("across", lambda x: lateral(x, layout, c.reshape(-1, 3), across.reshape(-1, 3)),
              ACROSS_WEIGHT, False),
-        Term("ruling_fairness", lambda x: ruling_fairness(x, layout), RULING_FAIRNESS, False,
-             True),
+        Term("ruling_fairness", lambda x: ruling_fairness(x, layout),
+             Schedule.constant(ruling_weight), False, True),
 
         Term("slide_fairness", lambda x: slide_fairness(x, layout, c, t), SLIDE_FAIRNESS,
              False, True)]
@@ -239,7 +239,8 @@ def _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight):
 
 
 def fit_template(f: np.ndarray, columns: list[int], A0: np.ndarray, B0: np.ndarray, *,
-                 seam_weight: float = SEAM_WEIGHT, rounds: int = FIT_ROUNDS) -> TemplateFit:
+                 seam_weight: float = SEAM_WEIGHT, ruling_fairness: float = RULING_FAIRNESS,
+                 rounds: int = FIT_ROUNDS) -> TemplateFit:
     """Fit one template to the strips ``columns`` of the net ``f (m, n, 3)``, starting from the
     planar strips ``A0, B0 (S, m, 3)`` (see the module). Returns the rebuilt strips.
 
@@ -274,7 +275,8 @@ def fit_template(f: np.ndarray, columns: list[int], A0: np.ndarray, B0: np.ndarr
     seam_dirs = _seam_directions(P, Q) if seam_weight > 0 and S > 1 else None
     workspace, iterations = None, 0
     for _ in range(rounds):
-        soft = _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight)
+        soft = _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight,
+                           ruling_fairness)
         fitted = guided_projection(x, hard + soft, tol=FIT_TOL, max_iter=ROUND_MAX_ITER,
                                    workspace=workspace)
         x, workspace, iterations = fitted.x, fitted.workspace, iterations + fitted.iterations
