@@ -15,8 +15,13 @@ from dgpc_cli.io.units import from_mm
 from dgpc_cli.stages.planarize import planarize_strips
 from dgpc_cli.strips.congruence import align
 from dgpc_cli.strips.develop import develop_strip
-from dgpc_cli.strips.quality import planarity_defect
-from dgpc_cli.strips.template import _rotate_about, bend_template, closest_on_polylines
+from dgpc_cli.strips.quality import deviation, planarity_defect
+from dgpc_cli.strips.template import (
+    _rotate_about,
+    bend_template,
+    closest_on_polylines,
+    fit_template,
+)
 from dgpc_cli.surfaces.minding import minding_bend
 
 
@@ -110,3 +115,23 @@ def test_ends_on_the_edge_rows_per_strip(bent):
         for X, g in ((s.A, f[:, s.v]), (s.B, f[:, s.v + 1])):
             _, _, t = closest_on_polylines(X[None, [0, -1]], g[None])
             assert np.allclose(t[0], [0.0, f.shape[0] - 1.0], atol=1e-9)
+
+
+def test_the_fit_from_the_net_gives_one_template_edge_to_edge(bent):
+    """fit_template from the net's own (non-planar) strips: exact bendings of one template,
+    ending on the net's end v-edges, close to the net (the CLI skips the fit for strips that
+    are congruent already, as they are on a surface of revolution)."""
+    f = read_net(bent / "bent").f
+    cols = [0, 1, 2]
+    P, Q = (np.moveaxis(f[:, [c + k for c in cols]], 1, 0) for k in (0, 1))
+    fit = fit_template(f, cols, P, Q)
+    width = _widths(f)
+    assert fit.status == "converged"
+    devs = [develop_strip(A, B) for A, B in zip(fit.A, fit.B, strict=True)]
+    for (A, B), d, p, q in zip(zip(fit.A, fit.B, strict=True), devs, P, Q, strict=True):
+        assert planarity_defect(A, B).max() <= 1e-9
+        assert align(d.A, d.B, fit.template[:, 0], fit.template[:, 1]).error <= 1e-6 * width
+        for X, g in ((A, p), (B, q)):
+            _, _, t = closest_on_polylines(X[None, [0, -1]], g[None])
+            assert np.allclose(t[0], [0.0, f.shape[0] - 1.0], atol=1e-6)
+        assert deviation(A, B, p, q) <= 0.02 * width

@@ -26,8 +26,11 @@ from dgpc_cli.strips.rulings import (
 from dgpc_cli.strips.template import (
     RULING_FAIRNESS,
     SEAM_WEIGHT,
+    TemplateFit,
+    bend_template,
     closest_on_polylines,
     fit_template,
+    start_template,
 )
 from dgpc_cli.strips.trim import strip_points, trim_strip
 
@@ -39,6 +42,8 @@ FLAT_ANGLE = 1e-6
 MAX_SHIFT = 0.45
 #: Quads with a planarity defect above this after the ruling construction get polished.
 POLISH_ABOVE = 1e-10
+#: Per-strip strips whose quads agree to this fraction of the width are one template already.
+CONGRUENT = 1e-9
 #: ``--trim`` drops parts shorter than this many quads along the strip.
 MIN_PART_QUADS = 1.0
 
@@ -186,6 +191,19 @@ def template_qualifies(f: np.ndarray, columns: list[int]) -> str | None:
     return None
 
 
+def _congruent(A: np.ndarray, B: np.ndarray, width: float) -> bool:
+    """Whether the planar strips ``A, B (S, m, 3)`` are congruent to the first one with the same
+    vertices, within ``CONGRUENT`` × ``width`` (every edge, ruling and diagonal of every quad)."""
+    def lengths(a, b):
+        return np.concatenate([np.linalg.norm(np.diff(a, axis=-2), axis=-1),
+                               np.linalg.norm(np.diff(b, axis=-2), axis=-1),
+                               np.linalg.norm(b - a, axis=-1),
+                               np.linalg.norm(b[..., 1:, :] - a[..., :-1, :], axis=-1),
+                               np.linalg.norm(a[..., 1:, :] - b[..., :-1, :], axis=-1)], axis=-1)
+
+    return bool(np.abs(lengths(A, B) - lengths(A[:1], B[:1])).max() <= CONGRUENT * width)
+
+
 def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
                     seam_weight: float = SEAM_WEIGHT, ruling_fairness: float = RULING_FAIRNESS
                     ) -> tuple[list[PlanarStrip], dict]:
@@ -194,7 +212,9 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
     (variant, start, fit outcome, its 2-D boundaries in ``units``).
 
     The fit starts once from the per-strip strips and once from the net's own strips (rulings
-    on the v-edges); the fit that stays closer to the net (largest deviation) is kept.
+    on the v-edges); the fit that stays closer to the net (largest deviation) is kept. Strips
+    that are congruent already (a surface of revolution) are rebuilt from the first one's
+    development without a fit (status ``congruent``).
     """
     f = np.asarray(f, dtype=float)
     columns = [s.v for s in strips]
@@ -203,6 +223,15 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
     starts = {"per-strip": (np.stack([s.A for s in strips]), np.stack([s.B for s in strips])),
               "net": (P, Q)}
     best = None
+    if _congruent(*starts["per-strip"], min(s.width for s in strips)):
+        # a surface of revolution: the per-strip strips are one template already
+        A0, B0 = starts["per-strip"]
+        template = start_template(A0[:1], B0[:1])
+        A1, B1 = bend_template(template, A0, B0)
+        fit = TemplateFit(A=A1, B=B1, template=template, variant="shared-vertices",
+                          status="congruent", iterations=0, R=0.0)
+        best = (0.0, "per-strip", fit)
+        starts = {}
     for name, (A0, B0) in starts.items():
         fit = fit_template(f, columns, A0, B0, seam_weight=seam_weight,
                            ruling_fairness=ruling_fairness)
