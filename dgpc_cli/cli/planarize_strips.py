@@ -105,9 +105,13 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
     if reason is None:
         log.info("planarize-strips: one template for all strips (the net is isometric to a "
                  "surface of revolution with equal strip widths)")
-        strips, template = template_strips(net.f_mm, strips, net.units,
+        fitted, template = template_strips(net.f_mm, strips, net.units,
                                            seam_weight=seam_weight,
                                            ruling_fairness=ruling_fairness)
+        if fitted is None:
+            log.warning("planarize-strips: every strip on its own, no shared template: every "
+                        "template fit crossed its rulings (folded quads)")
+        strips = fitted or strips
     elif not per_strip:
         log.warning("planarize-strips: every strip on its own, no shared template: the net %s",
                     reason)

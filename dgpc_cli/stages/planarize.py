@@ -44,6 +44,8 @@ MAX_SHIFT = 0.45
 POLISH_ABOVE = 1e-10
 #: Per-strip strips whose quads agree to this fraction of the width are one template already.
 CONGRUENT = 1e-9
+#: Factors of the ruling fairness tried in turn until a template fit keeps its rulings in order.
+FAIRNESS_STEPS = (1.0, 10.0, 100.0)
 #: ``--trim`` drops parts shorter than this many quads along the strip.
 MIN_PART_QUADS = 1.0
 
@@ -191,6 +193,19 @@ def template_qualifies(f: np.ndarray, columns: list[int]) -> str | None:
     return None
 
 
+def _template_ordered(template: np.ndarray) -> bool:
+    """Whether the quads of a ``template (m, 2, 2)`` keep their rulings in order: both
+    boundaries run forward (along the chord from the first ruling's midpoint to the last's)
+    and every quad turns the same way (the cross product of its diagonals keeps its sign), so
+    no two rulings cross. Its exact bendings keep every quad's shape, hence the same order."""
+    a, b = template[:, 0], template[:, 1]
+    chord = 0.5 * (a[-1] + b[-1] - a[0] - b[0])
+    forward = all(bool(np.all(np.diff(X, axis=0) @ chord > 0)) for X in (a, b))
+    d1, d2 = b[1:] - a[:-1], a[1:] - b[:-1]
+    turn = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    return forward and bool(np.all(turn > 0) or np.all(turn < 0))
+
+
 def _congruent(A: np.ndarray, B: np.ndarray, width: float) -> bool:
     """Whether the planar strips ``A, B (S, m, 3)`` are congruent to the first one with the same
     vertices, within ``CONGRUENT`` × ``width`` (every edge, ruling and diagonal of every quad)."""
@@ -206,7 +221,7 @@ def _congruent(A: np.ndarray, B: np.ndarray, width: float) -> bool:
 
 def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
                     seam_weight: float = SEAM_WEIGHT, ruling_fairness: float = RULING_FAIRNESS
-                    ) -> tuple[list[PlanarStrip], dict]:
+                    ) -> tuple[list[PlanarStrip] | None, dict | None]:
     """The planar strips ``strips`` (per-strip, of the net ``f`` in mm) replaced by exact
     bendings of one template (:mod:`dgpc_cli.strips.template`), and the template's record
     (variant, start, fit outcome, its 2-D boundaries in ``units``).
@@ -214,7 +229,9 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
     The fit starts once from the per-strip strips and once from the net's own strips (rulings
     on the v-edges); the fit that stays closer to the net (largest deviation) is kept. Strips
     that are congruent already (a surface of revolution) are rebuilt from the first one's
-    development without a fit (status ``congruent``).
+    development without a fit (status ``congruent``). Fits whose template folds (rulings
+    that cross) are refused; the ruling fairness is raised tenfold until one keeps them in
+    order (:data:`FAIRNESS_STEPS`), else ``(None, None)``: no template.
     """
     f = np.asarray(f, dtype=float)
     columns = [s.v for s in strips]
@@ -230,18 +247,25 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
         A1, B1 = bend_template(template, A0, B0)
         fit = TemplateFit(A=A1, B=B1, template=template, variant="shared-vertices",
                           status="congruent", iterations=0, R=0.0)
-        best = (0.0, "per-strip", fit)
+        best = (0.0, "per-strip", fit, 0.0)
         starts = {}
-    for name, (A0, B0) in starts.items():
-        fit = fit_template(f, columns, A0, B0, seam_weight=seam_weight,
-                           ruling_fairness=ruling_fairness)
-        worst = max(deviation(a, b, p, q) / strip_width(p, q)
-                    for a, b, p, q in zip(fit.A, fit.B, P, Q, strict=True))
-        log.debug("template fit from the %s start: largest deviation %.3g of the width", name,
-                  worst)
-        if best is None or worst < best[0]:
-            best = (worst, name, fit)
-    _, start, fit = best
+    for factor in FAIRNESS_STEPS if starts else ():
+        for name, (A0, B0) in starts.items():
+            fit = fit_template(f, columns, A0, B0, seam_weight=seam_weight,
+                               ruling_fairness=ruling_fairness * factor)
+            worst = max(deviation(a, b, p, q) / strip_width(p, q)
+                        for a, b, p, q in zip(fit.A, fit.B, P, Q, strict=True))
+            ordered = _template_ordered(fit.template)
+            log.debug("template fit from the %s start, ruling fairness %g: largest deviation "
+                      "%.3g of the width, rulings %s", name, ruling_fairness * factor, worst,
+                      "in order" if ordered else "crossing")
+            if ordered and (best is None or worst < best[0]):
+                best = (worst, name, fit, ruling_fairness * factor)
+        if best is not None:
+            break
+    if best is None:
+        return None, None
+    _, start, fit, fairness = best
     _, _, sA = closest_on_polylines(fit.A, P)
     _, _, sB = closest_on_polylines(fit.B, Q)
     out = []
@@ -251,8 +275,9 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
             strip, A=a, B=b, params=np.stack([sA[i], sB[i]], axis=-1),
             planarity=float(np.max(planarity_defect(a, b))),
             deviation=deviation(a, b, P[i], Q[i]) / strip.width,
-            rulings_ordered=_forward(a, P[i]) and _forward(b, Q[i])))
-    record = {"variant": fit.variant, "start": start, "status": fit.status,
+            rulings_ordered=True))
+    record = {"variant": fit.variant, "start": start, "ruling_fairness": fairness,
+              "status": fit.status,
               "iterations": fit.iterations, "A": from_mm(fit.template[:, 0], units),
               "B": from_mm(fit.template[:, 1], units)}
     return out, record
