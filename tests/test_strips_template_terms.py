@@ -15,11 +15,11 @@ from dgpc_cli.core.constraints.template import (
     strip_quad_samples,
     template_gauge,
     template_isometry,
+    template_order,
 )
 
-NAMES = ["template_isometry", "template_gauge", "ruling_fairness", "seam", "plane_offsets",
-         "planarity",
-         "lateral", "surface_closeness"]
+NAMES = ["template_isometry", "template_gauge", "template_order", "ruling_fairness", "seam",
+         "plane_offsets", "planarity", "lateral", "surface_closeness"]
 
 
 def _state(layout, rng):
@@ -43,6 +43,7 @@ def _terms(layout, rng):
     frozen = FrozenReference(len(samples[0]), rng)
     return {"template_isometry": lambda x: template_isometry(x, layout),
             "template_gauge": lambda x: template_gauge(x, layout),
+            "template_order": lambda x: template_order(x, layout, [0.6, 0.8], -1.0, 0.1, 0.2),
             "ruling_fairness": lambda x: ruling_fairness(x, layout),
             "seam": lambda x: seam(x, layout, d),
             "plane_offsets": lambda x: plane_offsets(x, layout, samples, frozen.p, frozen.n),

@@ -40,6 +40,7 @@ from dgpc_cli.core.constraints.template import (
     strip_quad_samples,
     template_gauge,
     template_isometry,
+    template_order,
 )
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.core.solver import Schedule, Term, guided_projection
@@ -59,6 +60,9 @@ ACROSS_WEIGHT = Schedule.constant(1e-3)
 #: Weights of the fairness of the ruling vectors and of the slides along the geodesics.
 RULING_FAIRNESS = 1e-7
 SLIDE_FAIRNESS = Schedule.constant(1e-8)
+#: The template's boundary steps and quad turns stay above this fraction of their mean (no
+#: folded quad, no crossing rulings).
+ORDER_MARGIN = 0.2
 #: Default weight of the seam term (off: see the README's trade-off table).
 SEAM_WEIGHT = 0.0
 #: Tolerance (hard residual at mean edge length 1) and iteration limit of the fit.
@@ -208,6 +212,19 @@ def _frames(P, Q, X, is_b):
     return c, t, unit(np.cross(n, t))
 
 
+def _order_bounds(T: np.ndarray):
+    """Direction, turn and bounds of :func:`template_order` from a start template ``T (m, 2,
+    2)``: along its chord, its prevailing turn, steps and turns at least ORDER_MARGIN of their
+    mean."""
+    a, b = T[:, 0], T[:, 1]
+    e = unit(0.5 * (a[-1] + b[-1] - a[0] - b[0]))
+    d1, d2 = b[1:] - a[:-1], a[1:] - b[:-1]
+    cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    sign = 1.0 if cross.sum() >= 0 else -1.0
+    step = ORDER_MARGIN * 0.5 * float(np.mean(np.diff(a, axis=0) @ e + np.diff(b, axis=0) @ e))
+    return e, sign, step, ORDER_MARGIN * float(np.mean(np.abs(cross)))
+
+
 def _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight, ruling_weight):
     """The soft terms and regularizers, their frames (closest points on the geodesics, tangent
     planes of the net at the samples' feet) taken at ``x``: held fixed for one round."""
@@ -258,7 +275,11 @@ def fit_template(f: np.ndarray, columns: list[int], A0: np.ndarray, B0: np.ndarr
     P, Q = (P - center) * scale, (Q - center) * scale
     A, B = (A0 - center) * scale, (B0 - center) * scale
     layout = StripSetLayout(m, S)
-    x = layout.pack(A, B, start_template(A, B))
+    T0 = start_template(A, B)
+    x = layout.pack(A, B, T0)
+    order = _order_bounds(T0)
+    x[layout.slack_offset:] = np.sqrt(np.maximum(
+        template_order(x, layout, *order)[0] + x[layout.slack_offset:] ** 2, 0.0))
     # the end rulings: the net's end v-edges (no slide along the geodesic there)
     ends = np.r_[layout.vid[0], layout.vid[-1]]
     end_c = np.stack([np.stack([P[:, r], Q[:, r]], axis=1).reshape(2 * S, 3) for r in (0, -1)])
@@ -269,7 +290,9 @@ def fit_template(f: np.ndarray, columns: list[int], A0: np.ndarray, B0: np.ndarr
         Term("planarity", lambda x: planarity(x, layout), Schedule.constant(1.0)),
         Term("ends", lambda x: lateral(x, layout, end_c.reshape(-1, 3), end_t.reshape(-1, 3),
                                        ends), Schedule.constant(1.0)),
-        Term("template_gauge", lambda x: template_gauge(x, layout), Schedule.constant(1.0))]
+        Term("template_gauge", lambda x: template_gauge(x, layout), Schedule.constant(1.0)),
+        Term("template_order", lambda x: template_order(x, layout, *order),
+             Schedule.constant(1.0))]
     reference = _net_surface((f - center) * scale, columns)
     samples = strip_quad_samples(layout)
     seam_dirs = _seam_directions(P, Q) if seam_weight > 0 and S > 1 else None

@@ -80,6 +80,11 @@ class StripSetLayout:
 
     @property
     def size(self) -> int:
+        return self.t_offset + 4 * self.m + 3 * (self.m - 1)
+
+    @property
+    def slack_offset(self) -> int:
+        """Columns of the slack variables σ of :func:`template_order`, ``3 (m−1)``."""
         return self.t_offset + 4 * self.m
 
     def f_cols(self, vertex_ids) -> np.ndarray:
@@ -101,7 +106,7 @@ class StripSetLayout:
 
     def template(self, x: np.ndarray) -> np.ndarray:
         """The template ``(m, 2, 2)``: ``[u, 0] = a_u``, ``[u, 1] = b_u``."""
-        return x[self.t_offset:].reshape(self.m, 2, 2).copy()
+        return x[self.t_offset:self.slack_offset].reshape(self.m, 2, 2).copy()
 
     def strips(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The strips' vertices ``A, B (S, m, 3)``."""
@@ -117,14 +122,15 @@ class StripSetLayout:
         n = np.cross(c[:, 2] - c[:, 0], c[:, 3] - c[:, 1])
         norm = np.linalg.norm(n, axis=1, keepdims=True)
         n = np.where(norm > 0, n / np.where(norm > 0, norm, 1.0), [0.0, 0.0, 1.0])
-        return np.concatenate([p.ravel(), n.ravel(), np.asarray(template, float).ravel()])
+        return np.concatenate([p.ravel(), n.ravel(), np.asarray(template, float).ravel(),
+                               np.zeros(3 * (self.m - 1))])
 
 
 def template_isometry(x, layout: StripSetLayout):
     """Residuals ``½(‖p_i − p_j‖² − ‖t_k − t_l‖²)`` (one per edge, ruling and diagonal of every
     strip quad) against the template's same pair. Quadratic, so the Jacobian is exact."""
     p, _ = layout.split(x)
-    t = x[layout.t_offset:].reshape(-1, 2)
+    t = x[layout.t_offset:layout.slack_offset].reshape(-1, 2)
     i, j, k, l = layout.pairs.T  # noqa: E741 - vertex indices
     dp = p[i] - p[j]
     dt = t[k] - t[l]
@@ -200,3 +206,34 @@ def plane_offsets(x, layout: StripSetLayout, samples, points, normals):
     return phi, jacobian(phi.size, layout.size,
                          (rows, layout.f_cols(ids), coefficients[:, :, None] * n[:, None, :]))
 
+
+
+def template_order(x, layout: StripSetLayout, direction, sign, step, area):
+    """Residuals ``g − ε − σ²`` (Tang et al. 2014's slack form of ``g ≥ ε``, 3 per template
+    quad): both boundary steps run forward, ``⟨a_(u+1) − a_u, e⟩ ≥ step`` and the same for b,
+    along the fixed unit ``direction`` e; and the quad keeps its turn, ``sign · (d₁ × d₂) ≥
+    area`` with the diagonals ``d₁ = b_(u+1) − a_u``, ``d₂ = a_(u+1) − b_u``: no two rulings
+    cross (no folded quad). Quadratic."""
+    m = layout.m
+    t = x[layout.t_offset:layout.slack_offset].reshape(m, 2, 2)
+    sig = x[layout.slack_offset:].reshape(3, m - 1)
+    e = np.asarray(direction, dtype=float)
+    a, b = t[:, 0], t[:, 1]
+    d1, d2 = b[1:] - a[:-1], a[1:] - b[:-1]
+    cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    phi = np.concatenate([np.diff(a, axis=0) @ e - step - sig[0] ** 2,
+                          np.diff(b, axis=0) @ e - step - sig[1] ** 2,
+                          sign * cross - area - sig[2] ** 2])
+    u = np.arange(m - 1)
+    r0, r1, r2 = (u + k * (m - 1) for k in range(3))
+    ia, ib = 2 * u, 2 * u + 1                        # template ids of a_u, b_u
+    g1 = sign * np.stack([d2[:, 1], -d2[:, 0]], -1)  # ∂cross/∂d1
+    g2 = sign * np.stack([-d1[:, 1], d1[:, 0]], -1)  # ∂cross/∂d2
+    sc = layout.slack_offset + np.arange(3 * (m - 1)).reshape(3, m - 1)
+    J = jacobian(phi.size, layout.size,
+                 (r0[:, None], layout.t_cols(ia + 2), e), (r0[:, None], layout.t_cols(ia), -e),
+                 (r1[:, None], layout.t_cols(ib + 2), e), (r1[:, None], layout.t_cols(ib), -e),
+                 (r2[:, None], layout.t_cols(ib + 2), g1), (r2[:, None], layout.t_cols(ia), -g1),
+                 (r2[:, None], layout.t_cols(ia + 2), g2), (r2[:, None], layout.t_cols(ib), -g2),
+                 (np.concatenate([r0, r1, r2]), sc.ravel(), -2.0 * sig.ravel()))
+    return phi, J
