@@ -18,9 +18,13 @@ from dgpc_cli.io.strips import StripsArtifact, strips_files
 from dgpc_cli.stages.planarize import (
     FLAT_ANGLE,
     POLISH_ABOVE,
+    RULING_FAIRNESS,
+    SEAM_WEIGHT,
     parse_strip_range,
     planarize_strips,
     strips_metrics,
+    template_qualifies,
+    template_strips,
     trim_records,
 )
 from dgpc_cli.stages.soundness import require_sound_net
@@ -54,11 +58,25 @@ def _outline(net, json_path):
               help="Clip every strip to the outline of the reference the net records (a net "
                    "made with init --extend runs past it): the parts end where the reference "
                    "ends; parts shorter than one quad are dropped (stderr says which).")
+@click.option("--per-strip", is_flag=True,
+              help="Planarize every strip on its own (its own rulings and outline) instead of "
+                   "fitting one template shared by all strips, the default for a net "
+                   "isometric to a surface of revolution with equal strip widths.")
+@click.option("--seam-weight", type=FiniteFloat(min=0), default=SEAM_WEIGHT,
+              show_default=True,
+              help="Template fit: weight of the seams (neighbouring strips' boundaries on the "
+                   "same geodesic, no step or gap) against the closeness to the net.")
+@click.option("--ruling-fairness", type=FiniteFloat(min=0), default=RULING_FAIRNESS,
+              show_default=True,
+              help="Template fit: weight of the rulings' smoothness (second differences of the "
+                   "ruling vectors): higher keeps neighbouring score lines closer to parallel, "
+                   "lower lets the strips follow the net more closely.")
 @output_opt
 @force_opt
 @format_opt
 @click.pass_context
-def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, output, force, fmt):
+def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, seam_weight,
+                         ruling_fairness, output, force, fmt):
     """Turn the geodesic strips of the net STEM into discrete developable strips (paper §6.2.4).
 
     Rulings follow the cross products N × N1 of neighbouring normals (averaged across flat
@@ -66,7 +84,13 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, output, force
     the two boundary geodesics. Strips whose quads stay measurably non-planar get a short
     guided-projection polish. Writes the strips artifact -o STEM2 (one OBJ object per strip,
     ids S-v00, S-v01, ...). With --trim each strip's record lists its parts inside the
-    reference's outline (data.strips[].trim); unfold develops those.
+    reference's outline (data.strips[].trim); unfold develops those. Every strip starts and
+    ends on the net's boundary rows.
+
+    A net isometric to a surface of revolution (extract-mold accepts it) with equally wide
+    strips gets one template: a flat strip shared by all strips, each strip an exact bending
+    of it fitted to its net strip (data.template records it); --per-strip keeps every strip
+    on its own.
     """
     json_path, _ = artifact_paths(stem)
     check_writable(output, force)
@@ -75,10 +99,24 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, output, force
     m, n = net.shape
     columns = parse_strip_range(strip_range, n)
     outline = _outline(net, json_path) if trim else None
+    reason = "--per-strip" if per_strip else template_qualifies(net.f_mm, columns)
     with progressbar(ctx, len(columns), "planarize strips") as bar:
-        strips = [s.in_units(net.units) for s in
-                  planarize_strips(net.f_mm, columns, flat_angle=flat_angle,
-                                   progress=bar.update)]
+        strips = planarize_strips(net.f_mm, columns, flat_angle=flat_angle, progress=bar.update)
+    template = None
+    if reason is None:
+        log.info("planarize-strips: one template for all strips (the net is isometric to a "
+                 "surface of revolution with equal strip widths)")
+        fitted, template = template_strips(net.f_mm, strips, net.units,
+                                           seam_weight=seam_weight,
+                                           ruling_fairness=ruling_fairness)
+        if fitted is None:
+            log.warning("planarize-strips: every strip on its own, no shared template: every "
+                        "template fit crossed its rulings (folded quads)")
+        strips = fitted or strips
+    elif not per_strip:
+        log.warning("planarize-strips: every strip on its own, no shared template: the net %s",
+                    reason)
+    strips = [s.in_units(net.units) for s in strips]
     records = [s.record() for s in strips]
     if outline is not None:
         trims, notes = trim_records(strips, outline)
@@ -94,7 +132,10 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, output, force
         geometry=[(s.A, s.B) for s in strips], records=records,
         source_shape=(m, n), units=net.units,
         parameters={"strips": [columns[0], columns[-1]], "flat_angle": flat_angle,
-                    "polish_above": POLISH_ABOVE, "trim": trim},
+                    "polish_above": POLISH_ABOVE, "trim": trim,
+                    "method": "per-strip" if template is None else "template",
+                    "seam_weight": seam_weight, "ruling_fairness": ruling_fairness},
+        template=template,
         inputs={"net": file_input(json_path, out_json.resolve().parent)},
         metrics={**strips_metrics(strips),
                  "fabrication": fabrication_metrics(net.f, net.units, records,

@@ -96,7 +96,8 @@ def read_obj_checked(json_path: Path, obj_path: Path, sha256: str) -> bytes:
 class StripsArtifact:
     """Planar-quad strips: ``geometry[i] = (A, B)`` with ``A, B (m, 3)`` in ``units`` and the
     JSON record ``records[i]`` (``id``, ``v``, ``rows``, quality, rulings), plus the envelope
-    fields."""
+    fields; ``template`` the one template all strips bend from (variant, start, fit outcome,
+    its 2-D boundaries ``A, B (m, 2)`` in ``units``), None for strips planarized one by one."""
 
     geometry: list
     records: list
@@ -106,6 +107,7 @@ class StripsArtifact:
     inputs: dict = field(default_factory=dict)
     metrics: dict = field(default_factory=dict)
     status: dict = field(default_factory=dict)
+    template: dict | None = None
 
 
 def strips_files(stem: str | Path, art: StripsArtifact) -> dict[Path, bytes]:
@@ -116,6 +118,8 @@ def strips_files(stem: str | Path, art: StripsArtifact) -> dict[Path, bytes]:
                                   for i, (A, B) in zip(ids, art.geometry, strict=True)])
     data = {"source_shape": list(art.source_shape), "geodesic_family": "u",
             "units": art.units, "strips": art.records}
+    if art.template is not None:
+        data["template"] = art.template
     return artifact_files(KIND, stem, obj_bytes, data, inputs=art.inputs,
                           parameters=art.parameters, metrics=art.metrics, status=art.status)
 
@@ -134,4 +138,5 @@ def read_strips(stem: str | Path) -> StripsArtifact:
     return StripsArtifact(geometry=geometry, records=records,
                           source_shape=tuple(data["source_shape"]), units=data["units"],
                           parameters=doc["parameters"], inputs=doc["inputs"],
-                          metrics=doc["metrics"], status=doc["status"])
+                          metrics=doc["metrics"], status=doc["status"],
+                          template=data.get("template"))

@@ -23,6 +23,15 @@ from dgpc_cli.strips.rulings import (
     strip_boundaries,
     strip_normals,
 )
+from dgpc_cli.strips.template import (
+    RULING_FAIRNESS,
+    SEAM_WEIGHT,
+    TemplateFit,
+    bend_template,
+    closest_on_polylines,
+    fit_template,
+    start_template,
+)
 from dgpc_cli.strips.trim import strip_points, trim_strip
 
 log = logging.getLogger(__name__)
@@ -33,6 +42,10 @@ FLAT_ANGLE = 1e-6
 MAX_SHIFT = 0.45
 #: Quads with a planarity defect above this after the ruling construction get polished.
 POLISH_ABOVE = 1e-10
+#: Per-strip strips whose quads agree to this fraction of the width are one template already.
+CONGRUENT = 1e-9
+#: Factors of the ruling fairness tried in turn until a template fit keeps its rulings in order.
+FAIRNESS_STEPS = (1.0, 10.0, 100.0)
 #: ``--trim`` drops parts shorter than this many quads along the strip.
 MIN_PART_QUADS = 1.0
 
@@ -157,6 +170,117 @@ def planarize_strips(f: np.ndarray, columns: list[int], *, flat_angle: float = F
         if progress is not None:
             progress(1)
     return out
+
+
+def template_qualifies(f: np.ndarray, columns: list[int]) -> str | None:
+    """None when the strips ``columns`` of the net ``f (m, n, 3)`` can share one template, else
+    why not (one line): the net must pass ``extract-mold``'s own check (isometric to a surface
+    of revolution: equation (5), every panel on its mold patch) and its strips must be equally
+    wide (7) (strips of unequal widths c_j d(u) are not congruent)."""
+    from dgpc_cli.mold.profile import column_factors, net_widths
+    from dgpc_cli.stages.extract_mold import DEFAULT_TOL, extract_mold
+
+    try:
+        extract_mold([("the net", f)])
+    except DgpcError as exc:
+        return exc.reason
+    wd = net_widths(f)
+    c = column_factors(wd.w, wd.d)[columns]
+    spread = float((c.max() - c.min()) / c.mean())
+    if spread > DEFAULT_TOL:
+        return (f"its strips are not equally wide (widths differ by {spread:.2e} relative, "
+                f"more than {DEFAULT_TOL:g}), so they are not congruent")
+    return None
+
+
+def _template_ordered(template: np.ndarray) -> bool:
+    """Whether the quads of a ``template (m, 2, 2)`` keep their rulings in order: both
+    boundaries run forward (along the chord from the first ruling's midpoint to the last's)
+    and every quad turns the same way (the cross product of its diagonals keeps its sign), so
+    no two rulings cross. Its exact bendings keep every quad's shape, hence the same order."""
+    a, b = template[:, 0], template[:, 1]
+    chord = 0.5 * (a[-1] + b[-1] - a[0] - b[0])
+    forward = all(bool(np.all(np.diff(X, axis=0) @ chord > 0)) for X in (a, b))
+    d1, d2 = b[1:] - a[:-1], a[1:] - b[:-1]
+    turn = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    return forward and bool(np.all(turn > 0) or np.all(turn < 0))
+
+
+def _congruent(A: np.ndarray, B: np.ndarray, width: float) -> bool:
+    """Whether the planar strips ``A, B (S, m, 3)`` are congruent to the first one with the same
+    vertices, within ``CONGRUENT`` × ``width`` (every edge, ruling and diagonal of every quad)."""
+    def lengths(a, b):
+        return np.concatenate([np.linalg.norm(np.diff(a, axis=-2), axis=-1),
+                               np.linalg.norm(np.diff(b, axis=-2), axis=-1),
+                               np.linalg.norm(b - a, axis=-1),
+                               np.linalg.norm(b[..., 1:, :] - a[..., :-1, :], axis=-1),
+                               np.linalg.norm(a[..., 1:, :] - b[..., :-1, :], axis=-1)], axis=-1)
+
+    return bool(np.abs(lengths(A, B) - lengths(A[:1], B[:1])).max() <= CONGRUENT * width)
+
+
+def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
+                    seam_weight: float = SEAM_WEIGHT, ruling_fairness: float = RULING_FAIRNESS
+                    ) -> tuple[list[PlanarStrip] | None, dict | None]:
+    """The planar strips ``strips`` (per-strip, of the net ``f`` in mm) replaced by exact
+    bendings of one template (:mod:`dgpc_cli.strips.template`), and the template's record
+    (variant, start, fit outcome, its 2-D boundaries in ``units``).
+
+    The fit starts once from the per-strip strips and once from the net's own strips (rulings
+    on the v-edges); the fit that stays closer to the net (largest deviation) is kept. Strips
+    that are congruent already (a surface of revolution) are rebuilt from the first one's
+    development without a fit (status ``congruent``). Fits whose template folds (rulings
+    that cross) are refused; the ruling fairness is raised tenfold until one keeps them in
+    order (:data:`FAIRNESS_STEPS`), else ``(None, None)``: no template.
+    """
+    f = np.asarray(f, dtype=float)
+    columns = [s.v for s in strips]
+    cols = np.asarray(columns)
+    P, Q = np.moveaxis(f[:, cols], 1, 0), np.moveaxis(f[:, cols + 1], 1, 0)
+    starts = {"per-strip": (np.stack([s.A for s in strips]), np.stack([s.B for s in strips])),
+              "net": (P, Q)}
+    best = None
+    if _congruent(*starts["per-strip"], min(s.width for s in strips)):
+        # a surface of revolution: the per-strip strips are one template already
+        A0, B0 = starts["per-strip"]
+        template = start_template(A0[:1], B0[:1])
+        A1, B1 = bend_template(template, A0, B0)
+        fit = TemplateFit(A=A1, B=B1, template=template, variant="shared-vertices",
+                          status="congruent", iterations=0, R=0.0)
+        best = (0.0, "per-strip", fit, 0.0)
+        starts = {}
+    for factor in FAIRNESS_STEPS if starts else ():
+        for name, (A0, B0) in starts.items():
+            fit = fit_template(f, columns, A0, B0, seam_weight=seam_weight,
+                               ruling_fairness=ruling_fairness * factor)
+            worst = max(deviation(a, b, p, q) / strip_width(p, q)
+                        for a, b, p, q in zip(fit.A, fit.B, P, Q, strict=True))
+            ordered = _template_ordered(fit.template)
+            log.debug("template fit from the %s start, ruling fairness %g: largest deviation "
+                      "%.3g of the width, rulings %s", name, ruling_fairness * factor, worst,
+                      "in order" if ordered else "crossing")
+            if ordered and (best is None or worst < best[0]):
+                best = (worst, name, fit, ruling_fairness * factor)
+        if best is not None:
+            break
+    if best is None:
+        return None, None
+    _, start, fit, fairness = best
+    _, _, sA = closest_on_polylines(fit.A, P)
+    _, _, sB = closest_on_polylines(fit.B, Q)
+    out = []
+    for i, strip in enumerate(strips):
+        a, b = fit.A[i], fit.B[i]
+        out.append(dataclasses.replace(
+            strip, A=a, B=b, params=np.stack([sA[i], sB[i]], axis=-1),
+            planarity=float(np.max(planarity_defect(a, b))),
+            deviation=deviation(a, b, P[i], Q[i]) / strip.width,
+            rulings_ordered=True))
+    record = {"variant": fit.variant, "start": start, "ruling_fairness": fairness,
+              "status": fit.status,
+              "iterations": fit.iterations, "A": from_mm(fit.template[:, 0], units),
+              "B": from_mm(fit.template[:, 1], units)}
+    return out, record
 
 
 def strips_metrics(strips: list[PlanarStrip]) -> dict:

@@ -158,11 +158,9 @@ def cut_rulings(P, Q, rulings, normals) -> tuple[np.ndarray, np.ndarray]:
     through the v-edge midpoints) cut the boundary geodesics P and Q (paper §6.2.4), and their
     parameters on P and Q ``(S, m, 2)``.
 
-    The end rulings are trimmed to the strip: where the plane through the end v-edge's midpoint
-    would cut a geodesic beyond its end, the plane is moved (parallel) to pass through that end
-    vertex, so the planar strip never reaches past the original one; where that trimmed end
-    ruling would cross its neighbour, the end v-edge itself is the end ruling (the polish then
-    makes that quad planar).
+    The end rulings are the net's end v-edges (SPEC §6: every strip starts and ends on the
+    net's boundary rows, so the parts cover the design edge to edge); the polish makes the end
+    quads planar.
     """
     m = P.shape[1]
     plane_n = unit(np.cross(rulings, normals))
@@ -170,20 +168,8 @@ def cut_rulings(P, Q, rulings, normals) -> tuple[np.ndarray, np.ndarray]:
     mid = 0.5 * (P + Q)
     sP = plane_cut(P, mid, plane_n, rows)
     sQ = plane_cut(Q, mid, plane_n, rows)
-    for u, inside in ((0, lambda s: s >= 0.0), (m - 1, lambda s: s <= m - 1.0)):
-        end = float(u)
-        n_end = plane_n[:, u:u + 1]
-        through_p = plane_cut(Q, P[:, u:u + 1], n_end, [end])[:, 0]
-        through_q = plane_cut(P, Q[:, u:u + 1], n_end, [end])[:, 0]
-        out = ~(inside(sP[:, u]) & inside(sQ[:, u]))
-        use_p = out & inside(through_p)
-        use_q = out & ~use_p & inside(through_q)
-        sP[:, u] = np.where(use_p, end, np.where(use_q, through_q, sP[:, u]))
-        sQ[:, u] = np.where(use_p, through_p, np.where(use_q, end, sQ[:, u]))
-    for u, nb, sign in ((0, 1, 1.0), (m - 1, m - 2, -1.0)):
-        crossed = (sign * (sP[:, nb] - sP[:, u]) <= 0) | (sign * (sQ[:, nb] - sQ[:, u]) <= 0)
-        sP[:, u] = np.where(crossed, float(u), sP[:, u])
-        sQ[:, u] = np.where(crossed, float(u), sQ[:, u])
+    for u in (0, m - 1):
+        sP[:, u] = sQ[:, u] = float(u)
     return point_at(P, sP), point_at(Q, sQ), np.stack([sP, sQ], axis=-1)
 
 

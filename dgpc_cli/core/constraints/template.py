@@ -1,0 +1,239 @@
+"""One flat template shared by S planar-quad strips (paper §6.2.4, Fig. 18: "congruent bendable
+strips"): the terms of the template fit of ``planarize-strips`` (SPEC §6).
+
+The variables (:class:`StripSetLayout`) are the 3-D vertices of S strips of m rows, one auxiliary
+normal per strip quad (planarity stays quadratic, as in :mod:`.planarity`), and the 2-D vertices
+``a_u, b_u`` of the template shared by all strips. Vertex ``(u, c)`` of the 3-D grid is row u of
+column c, with strip s occupying the columns ``2s`` (A, on its geodesic v) and ``2s + 1`` (B, on
+v + 1); its quads are ``(u, 2s), (u+1, 2s), (u+1, 2s+1), (u, 2s+1)``. The layout offers the
+interface of :class:`.planarity.QuadGridLayout` (``vid``, ``corners``, ``f_cols``, ``n_cols``,
+``split``, ``size``), so the planarity, lateral, slide-fairness, surface-closeness and anchor
+terms apply to it unchanged.
+
+Terms of its own (``term(x, layout, ...) -> (phi, J)``, value-independent COO patterns):
+
+* template isometry: ``½(‖p_i − p_j‖² − ‖t_i − t_j‖²)`` for the two geodesic edges, the ruling
+  and both diagonals of every quad of every strip against the same pair of the template: every
+  strip quad is congruent to the template quad (six distances fix four points up to a rigid
+  motion, a planar quad's distances force a planar quad);
+* template gauge: ``a_0 = (0, 0)``, ``b_0`` on the x-axis (the template's rigid motions);
+* ruling fairness: second differences along u of the ruling vectors ``B_u − A_u`` (rulings
+  that turn smoothly: score lines that do not zigzag);
+* seam: ``⟨d, B_(s,u) − A_(s+1,u)⟩`` for the directions d across the shared geodesic and along
+  the surface normal: neighbouring strips' boundaries on the same geodesic (no step, no gap).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from dgpc_cli.core.constraints.base import jacobian
+
+
+@dataclass(frozen=True)
+class StripSetLayout:
+    """Variables of S strips of m rows sharing one template:
+    ``x = [p (3 · m · 2S), n (3 · (m−1) S), t (2 · 2m)]`` (see the module)."""
+
+    m: int
+    S: int
+    vid: np.ndarray = field(init=False, repr=False)
+    corners: np.ndarray = field(init=False, repr=False)
+    pairs: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self):
+        if self.m < 2 or self.S < 1:
+            raise ValueError(f"a strip set needs 2 rows and 1 strip, got {self.m}×{self.S}")
+        vid = np.arange(self.m * self.k).reshape(self.m, self.k)
+        a, b = vid[:, 0::2], vid[:, 1::2]                                   # (m, S)
+        corners = np.stack([a[:-1], a[1:], b[1:], b[:-1]], axis=-1)        # (m-1, S, 4)
+        corners = np.moveaxis(corners, 1, 0).reshape(-1, 4)                 # strip-major
+        # template vertex ids (u, j) -> 2u + j; pairs (3-D ids, template ids) per strip
+        ta, tb = 2 * np.arange(self.m), 2 * np.arange(self.m) + 1
+        t_pairs = np.concatenate([np.stack(p, -1) for p in (
+            (ta[:-1], ta[1:]), (tb[:-1], tb[1:]), (ta, tb), (ta[:-1], tb[1:]), (tb[:-1], ta[1:]))])
+        p_pairs = np.concatenate([np.stack(p, -1) for p in (
+            (a[:-1], a[1:]), (b[:-1], b[1:]), (a, b), (a[:-1], b[1:]), (b[:-1], a[1:]))])
+        pairs = np.concatenate([np.moveaxis(p_pairs, 1, 0).reshape(-1, 2),
+                                np.tile(t_pairs, (self.S, 1))], axis=1)     # (S·(5m−4), 4)
+        for name, value in (("vid", vid), ("corners", corners), ("pairs", pairs)):
+            value.setflags(write=False)
+            object.__setattr__(self, name, value)
+
+    @property
+    def k(self) -> int:
+        return 2 * self.S
+
+    @property
+    def n_vertices(self) -> int:
+        return self.m * self.k
+
+    @property
+    def n_quads(self) -> int:
+        return (self.m - 1) * self.S
+
+    @property
+    def t_offset(self) -> int:
+        return 3 * self.n_vertices + 3 * self.n_quads
+
+    @property
+    def size(self) -> int:
+        return self.t_offset + 4 * self.m + 3 * (self.m - 1)
+
+    @property
+    def slack_offset(self) -> int:
+        """Columns of the slack variables σ of :func:`template_order`, ``3 (m−1)``."""
+        return self.t_offset + 4 * self.m
+
+    def f_cols(self, vertex_ids) -> np.ndarray:
+        """Columns of p_i, shape ``(*vertex_ids.shape, 3)``."""
+        return 3 * np.asarray(vertex_ids)[..., None] + np.arange(3)
+
+    def n_cols(self, quad_ids) -> np.ndarray:
+        """Columns of n_q, shape ``(*quad_ids.shape, 3)``."""
+        return 3 * self.n_vertices + 3 * np.asarray(quad_ids)[..., None] + np.arange(3)
+
+    def t_cols(self, template_ids) -> np.ndarray:
+        """Columns of the template vertex t_i (id 2u for a_u, 2u + 1 for b_u), ``(..., 2)``."""
+        return self.t_offset + 2 * np.asarray(template_ids)[..., None] + np.arange(2)
+
+    def split(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Views ``p (|V|, 3)`` and ``n (|Q|, 3)`` of the variable vector."""
+        nv = self.n_vertices
+        return x[: 3 * nv].reshape(nv, 3), x[3 * nv: self.t_offset].reshape(-1, 3)
+
+    def template(self, x: np.ndarray) -> np.ndarray:
+        """The template ``(m, 2, 2)``: ``[u, 0] = a_u``, ``[u, 1] = b_u``."""
+        return x[self.t_offset:self.slack_offset].reshape(self.m, 2, 2).copy()
+
+    def strips(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The strips' vertices ``A, B (S, m, 3)``."""
+        p = x[: 3 * self.n_vertices].reshape(self.m, self.S, 2, 3)
+        return np.moveaxis(p[:, :, 0], 1, 0).copy(), np.moveaxis(p[:, :, 1], 1, 0).copy()
+
+    def pack(self, A: np.ndarray, B: np.ndarray, template: np.ndarray) -> np.ndarray:
+        """Variable vector from strips ``A, B (S, m, 3)`` and a template ``(m, 2, 2)``; n_q the
+        unit normal of the diagonals' cross product (+z for a degenerate quad)."""
+        p = np.stack([np.moveaxis(np.asarray(A, float), 0, 1),
+                      np.moveaxis(np.asarray(B, float), 0, 1)], axis=2).reshape(-1, 3)
+        c = p[self.corners]
+        n = np.cross(c[:, 2] - c[:, 0], c[:, 3] - c[:, 1])
+        norm = np.linalg.norm(n, axis=1, keepdims=True)
+        n = np.where(norm > 0, n / np.where(norm > 0, norm, 1.0), [0.0, 0.0, 1.0])
+        return np.concatenate([p.ravel(), n.ravel(), np.asarray(template, float).ravel(),
+                               np.zeros(3 * (self.m - 1))])
+
+
+def template_isometry(x, layout: StripSetLayout):
+    """Residuals ``½(‖p_i − p_j‖² − ‖t_k − t_l‖²)`` (one per edge, ruling and diagonal of every
+    strip quad) against the template's same pair. Quadratic, so the Jacobian is exact."""
+    p, _ = layout.split(x)
+    t = x[layout.t_offset:layout.slack_offset].reshape(-1, 2)
+    i, j, k, l = layout.pairs.T  # noqa: E741 - vertex indices
+    dp = p[i] - p[j]
+    dt = t[k] - t[l]
+    phi = 0.5 * (np.einsum("ij,ij->i", dp, dp) - np.einsum("ij,ij->i", dt, dt))
+    rows = np.arange(phi.size)[:, None]
+    J = jacobian(phi.size, layout.size,
+                 (rows, layout.f_cols(i), dp), (rows, layout.f_cols(j), -dp),
+                 (rows, layout.t_cols(k), -dt), (rows, layout.t_cols(l), dt))
+    return phi, J
+
+
+def template_gauge(x, layout: StripSetLayout):
+    """Residuals ``a_0 = (0, 0)`` and ``(b_0)_y = 0`` (3): the template's rigid motions fixed."""
+    cols = layout.t_offset + np.array([0, 1, 3])
+    phi = x[cols].copy()
+    return phi, jacobian(3, layout.size, (np.arange(3), cols, 1.0))
+
+
+def ruling_fairness(x, layout: StripSetLayout):
+    """Residuals ``r_(u−1) − 2 r_u + r_(u+1)`` (xyz, every inner row of every strip) of the
+    ruling vectors ``r_u = B_u − A_u``. Linear."""
+    p, _ = layout.split(x)
+    a, b = layout.vid[:, 0::2], layout.vid[:, 1::2]                        # (m, S)
+    r = p[b] - p[a]
+    phi = (r[:-2] - 2.0 * r[1:-1] + r[2:]).ravel()
+    rows = np.arange(phi.size).reshape(-1, 3)
+    blocks = []
+    for lo, w in ((0, 1.0), (1, -2.0), (2, 1.0)):
+        sl = slice(lo, layout.m - 2 + lo)
+        blocks += [(rows, layout.f_cols(b[sl].ravel()), w),
+                   (rows, layout.f_cols(a[sl].ravel()), -w)]
+    return phi, jacobian(phi.size, layout.size, *blocks)
+
+
+def seam(x, layout: StripSetLayout, directions):
+    """Residuals ``⟨d, B_(s,u) − A_(s+1,u)⟩`` for every row u and neighbouring pair s, s+1 and
+    both unit ``directions (2, m, S−1, 3)`` (across the shared geodesic, along the normal).
+    Linear; empty for a single strip."""
+    p, _ = layout.split(x)
+    b, a = layout.vid[:, 1:-1:2], layout.vid[:, 2::2]                      # (m, S-1)
+    d = np.asarray(directions, dtype=float).reshape(2, layout.m, layout.S - 1, 3)
+    phi = np.einsum("kusj,usj->kus", d, p[b] - p[a]).ravel()
+    rows = np.arange(phi.size)[:, None]
+    ids_b = np.broadcast_to(b, d.shape[:3]).ravel()
+    ids_a = np.broadcast_to(a, d.shape[:3]).ravel()
+    dd = d.reshape(-1, 3)
+    return phi, jacobian(phi.size, layout.size,
+                         (rows, layout.f_cols(ids_b), dd), (rows, layout.f_cols(ids_a), -dd))
+
+
+def strip_quad_samples(layout: StripSetLayout, k: int = 3) -> tuple[np.ndarray, np.ndarray]:
+    """Sample points of every strip quad as affine combinations of its corners: the ``k × k``
+    points of its bilinear patch. Vertex ids ``(Q k², 4)`` and coefficients ``(Q k², 4)``."""
+    s = np.linspace(0.0, 1.0, k)
+    su, sv = (g.ravel() for g in np.meshgrid(s, s, indexing="ij"))
+    w = np.stack([(1 - su) * (1 - sv), su * (1 - sv), su * sv, (1 - su) * sv], axis=-1)
+    ids = np.repeat(layout.corners, k * k, axis=0)
+    return ids, np.tile(w, (layout.n_quads, 1))
+
+
+def plane_offsets(x, layout: StripSetLayout, samples, points, normals):
+    """Residuals ``⟨n_k, Σ_j c_kj p_j − q_k⟩`` (1 per sample) of the points ``samples = (ids
+    (K, c), coefficients (K, c))`` (affine combinations of vertices, e.g. ruling midpoints)
+    from the planes through ``points (K, 3)`` with the unit ``normals (K, 3)``: the offset of
+    a point from a fixed tangent plane of the net (§5.1's point-to-plane distance with the
+    foot held). Linear."""
+    p, _ = layout.split(x)
+    ids, coefficients = (np.asarray(a) for a in samples)
+    n = np.asarray(normals, dtype=float)
+    s = np.einsum("kc,kcj->kj", coefficients, p[ids])
+    phi = np.einsum("kj,kj->k", s - np.asarray(points, dtype=float), n)
+    rows = np.arange(phi.size)[:, None, None]
+    return phi, jacobian(phi.size, layout.size,
+                         (rows, layout.f_cols(ids), coefficients[:, :, None] * n[:, None, :]))
+
+
+
+def template_order(x, layout: StripSetLayout, direction, sign, step, area):
+    """Residuals ``g − ε − σ²`` (Tang et al. 2014's slack form of ``g ≥ ε``, 3 per template
+    quad): both boundary steps run forward, ``⟨a_(u+1) − a_u, e⟩ ≥ step`` and the same for b,
+    along the fixed unit ``direction`` e; and the quad keeps its turn, ``sign · (d₁ × d₂) ≥
+    area`` with the diagonals ``d₁ = b_(u+1) − a_u``, ``d₂ = a_(u+1) − b_u``: no two rulings
+    cross (no folded quad). Quadratic."""
+    m = layout.m
+    t = x[layout.t_offset:layout.slack_offset].reshape(m, 2, 2)
+    sig = x[layout.slack_offset:].reshape(3, m - 1)
+    e = np.asarray(direction, dtype=float)
+    a, b = t[:, 0], t[:, 1]
+    d1, d2 = b[1:] - a[:-1], a[1:] - b[:-1]
+    cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    phi = np.concatenate([np.diff(a, axis=0) @ e - step - sig[0] ** 2,
+                          np.diff(b, axis=0) @ e - step - sig[1] ** 2,
+                          sign * cross - area - sig[2] ** 2])
+    u = np.arange(m - 1)
+    r0, r1, r2 = (u + k * (m - 1) for k in range(3))
+    ia, ib = 2 * u, 2 * u + 1                        # template ids of a_u, b_u
+    g1 = sign * np.stack([d2[:, 1], -d2[:, 0]], -1)  # ∂cross/∂d1
+    g2 = sign * np.stack([-d1[:, 1], d1[:, 0]], -1)  # ∂cross/∂d2
+    sc = layout.slack_offset + np.arange(3 * (m - 1)).reshape(3, m - 1)
+    J = jacobian(phi.size, layout.size,
+                 (r0[:, None], layout.t_cols(ia + 2), e), (r0[:, None], layout.t_cols(ia), -e),
+                 (r1[:, None], layout.t_cols(ib + 2), e), (r1[:, None], layout.t_cols(ib), -e),
+                 (r2[:, None], layout.t_cols(ib + 2), g1), (r2[:, None], layout.t_cols(ia), -g1),
+                 (r2[:, None], layout.t_cols(ia + 2), g2), (r2[:, None], layout.t_cols(ib), -g2),
+                 (np.concatenate([r0, r1, r2]), sc.ravel(), -2.0 * sig.ravel()))
+    return phi, J

@@ -1,0 +1,324 @@
+"""One cutting template for all strips of a net isometric to a surface of revolution (paper
+§6.2.4, Fig. 18; SPEC §6 planarize-strips).
+
+Such a net's strips between neighbouring geodesics are intrinsically one strip (equation (5)
+with equal strip widths (7)), so they can all be cut from one flat template and bent into
+place. The fit (:func:`fit_template`) solves, by guided projection, for one flat template (its
+2-D vertices ``a_u, b_u``, shared) and every strip's 3-D vertices at once:
+
+* hard: every strip quad congruent to the template quad (edges, ruling and both diagonals,
+  :func:`~dgpc_cli.core.constraints.template.template_isometry`), planar, its boundary vertices
+  on their net geodesic (no move across it), the end rulings on the net's end v-edges (the parts
+  cover the design edge to edge), the template's rigid motions fixed;
+* soft: the strips' quads (3 × 3 samples of each) close to the net (point-to-plane, §5.1),
+  and optionally the seams: neighbouring strips' boundaries on the same geodesic;
+* regularizers: fairness of the ruling vectors and of the vertices' slides along the geodesics.
+
+It starts from the per-strip planar strips (ends on the end v-edges) and a template averaged
+from their developments. Afterwards every strip is rebuilt from the template quad by quad
+(:func:`bend_template`): quad 0 placed by Kabsch onto the fitted quad, each next quad turned
+about the ruling it shares with the previous one to its best angle. The rebuilt strips are exact
+isometric bendings of the template: congruent and planar to round-off.
+
+Variant ``shared-vertices``: the template's vertices, hence its rulings (score lines), are the
+same on every strip.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+
+import numpy as np
+
+from dgpc_cli.core.constraints.planarity import lateral, planarity, slide_fairness
+from dgpc_cli.core.constraints.template import (
+    StripSetLayout,
+    plane_offsets,
+    ruling_fairness,
+    seam,
+    strip_quad_samples,
+    template_gauge,
+    template_isometry,
+    template_order,
+)
+from dgpc_cli.core.reference import ReferenceSurface
+from dgpc_cli.core.solver import Schedule, Term, guided_projection
+from dgpc_cli.metrics.frames import unit
+from dgpc_cli.strips.congruence import kabsch
+from dgpc_cli.strips.develop import develop_strip
+from dgpc_cli.strips.quality import patch_mesh
+
+log = logging.getLogger(__name__)
+
+#: The variants of the fit (see the module).
+VARIANTS = ("shared-vertices",)
+#: Weight schedule of the closeness of the strips to the net (the hard terms have weight 1).
+CLOSENESS_WEIGHT = Schedule.constant(1e-3)
+#: Weight of the boundary vertices' distance across their net geodesic.
+ACROSS_WEIGHT = Schedule.constant(1e-3)
+#: Weights of the fairness of the ruling vectors and of the slides along the geodesics.
+RULING_FAIRNESS = 1e-7
+SLIDE_FAIRNESS = Schedule.constant(1e-8)
+#: The template's boundary steps and quad turns stay above this fraction of their mean (no
+#: folded quad, no crossing rulings).
+ORDER_MARGIN = 0.2
+#: Default weight of the seam term (off: see the README's trade-off table).
+SEAM_WEIGHT = 0.0
+#: Tolerance (hard residual at mean edge length 1) and iteration limit of the fit.
+FIT_TOL = 1e-10
+FIT_ROUNDS = 4
+ROUND_MAX_ITER = 40
+PROJECTION_MAX_ITER = 30
+
+
+@dataclass
+class TemplateFit:
+    """The fitted strips ``A, B (S, m, 3)`` (rebuilt from the template: exact bendings), the
+    template ``(m, 2, 2)`` (``[u, 0] = a_u``, ``[u, 1] = b_u``), the variant and the solver's
+    outcome."""
+
+    A: np.ndarray
+    B: np.ndarray
+    template: np.ndarray
+    variant: str
+    status: str
+    iterations: int
+    R: float
+
+
+def closest_on_polylines(X: np.ndarray, P: np.ndarray) -> tuple[np.ndarray, np.ndarray,
+                                                                  np.ndarray]:
+    """For points ``X (S, k, 3)`` their closest points on the polylines ``P (S, m, 3)``, the
+    unit segment tangents there and the parameters (segment index + fraction), each over
+    ``(S, k)``."""
+    a, b = P[:, None, :-1], P[:, None, 1:]                       # (S, 1, m-1, 3)
+    e = b - a
+    t = np.clip(np.einsum("skmj,skmj->skm", X[:, :, None] - a, e)
+                / np.einsum("skmj,skmj->skm", e, e), 0.0, 1.0)   # (S, k, m-1)
+    foot = a + t[..., None] * e
+    dist = np.linalg.norm(X[:, :, None] - foot, axis=-1)
+    seg = np.argmin(dist, axis=-1)
+    pick = seg[..., None]
+    c = np.take_along_axis(foot, pick[..., None], 2)[:, :, 0]
+    tangent = unit(np.take_along_axis(np.broadcast_to(e, foot.shape), pick[..., None], 2)[:, :, 0])
+    return c, tangent, seg + np.take_along_axis(t, pick, 2)[..., 0]
+
+
+def start_template(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """A template ``(m, 2, 2)`` from planar strips ``A, B (S, m, 3)``: their developments
+    aligned onto the first one's (Kabsch) and averaged, placed with ``a_0`` at the origin and
+    ``b_0`` on the +x axis (the gauge of the fit)."""
+    devs = [develop_strip(a, b) for a, b in zip(A, B, strict=True)]
+    ref = np.concatenate([devs[0].A, devs[0].B])
+    acc = np.zeros_like(ref)
+    for d in devs:
+        X = np.concatenate([d.A, d.B])
+        R, t = kabsch(X, ref, allow_reflection=False)
+        acc += X @ R.T + t
+    mean = acc / len(devs)
+    m = A.shape[1]
+    a, b = mean[:m] - mean[0], mean[m:] - mean[0]
+    ang = np.arctan2(b[0, 1], b[0, 0])
+    c, s = np.cos(-ang), np.sin(-ang)
+    rot = np.array([[c, -s], [s, c]])
+    return np.stack([a @ rot.T, b @ rot.T], axis=1)
+
+
+def _rotate_about(X, origin, axis, angle):
+    """Points ``X (S, k, 3)`` turned by ``angle (S,)`` about the lines through ``origin (S, 3)``
+    along the unit ``axis (S, 3)`` (Rodrigues)."""
+    v = X - origin[:, None]
+    k = axis[:, None]
+    c, s = np.cos(angle)[:, None, None], np.sin(angle)[:, None, None]
+    return (origin[:, None] + v * c + np.cross(k, v) * s
+            + k * np.einsum("skj,skj->sk", k, v)[..., None] * (1 - c))
+
+
+def bend_template(template: np.ndarray, A: np.ndarray, B: np.ndarray) -> tuple[np.ndarray,
+                                                                                np.ndarray]:
+    """Exact isometric bendings of the ``template (m, 2, 2)`` fitted to the strips ``A, B
+    (S, m, 3)``: quad 0 by Kabsch onto the strip's quad 0, then every next template quad
+    attached to the ruling already placed, flat, and turned about it to the angle that brings
+    its two far vertices closest to the strip's (least squares). Congruent and planar quads to
+    round-off."""
+    S, m = A.shape[:2]
+    T = np.concatenate([template, np.zeros((m, 2, 1))], axis=-1)          # (m, 2, 3)
+    outA, outB = np.empty_like(A), np.empty_like(B)
+    X0 = np.concatenate([T[:2, 0], T[:2, 1]])                              # (4, 3)
+    motions = []
+    for s in range(S):
+        Y0 = np.concatenate([A[s, :2], B[s, :2]])
+        motions.append(_kabsch3(X0, Y0))
+    Rm = np.stack([r for r, _ in motions])                                 # (S, 3, 3)
+    tm = np.stack([t for _, t in motions])                                 # (S, 3)
+
+    def place(points):                                                     # (k, 3) -> (S, k, 3)
+        return np.einsum("sij,kj->ski", Rm, points) + tm[:, None]
+
+    first = place(T[:2].reshape(-1, 3)).reshape(S, 2, 2, 3)
+    outA[:, :2], outB[:, :2] = first[:, :, 0], first[:, :, 1]
+    for u in range(1, m - 1):
+        flat = place(T[u + 1])                                             # (S, 2, 3)
+        origin = outA[:, u]
+        axis = unit(outB[:, u] - origin)
+        x = flat - origin[:, None]
+        y = np.stack([A[:, u + 1], B[:, u + 1]], axis=1) - origin[:, None]
+        xp = x - np.einsum("skj,sj->sk", x, axis)[..., None] * axis[:, None]
+        yp = y - np.einsum("skj,sj->sk", y, axis)[..., None] * axis[:, None]
+        angle = np.arctan2(np.einsum("skj,sj->s", np.cross(xp, yp), axis),
+                           np.einsum("skj,skj->s", xp, yp))
+        turned = _rotate_about(flat, origin, axis, angle)
+        outA[:, u + 1], outB[:, u + 1] = turned[:, 0], turned[:, 1]
+        c, s_ = np.cos(angle)[:, None, None], np.sin(angle)[:, None, None]
+        K = _cross_matrix(axis)
+        rot = np.eye(3) + s_ * K + (1 - c) * (K @ K)                       # (S, 3, 3)
+        tm = np.einsum("sij,sj->si", rot, tm - origin) + origin
+        Rm = rot @ Rm
+    return outA, outB
+
+
+def _cross_matrix(k):
+    z = np.zeros(k.shape[0])
+    return np.stack([np.stack([z, -k[:, 2], k[:, 1]], -1), np.stack([k[:, 2], z, -k[:, 0]], -1),
+                     np.stack([-k[:, 1], k[:, 0], z], -1)], axis=1)
+
+
+def _kabsch3(X, Y):
+    """The rotation R (det +1) and translation t minimizing ``Σ‖R x + t − y‖²`` in 3-D."""
+    cx, cy = X.mean(axis=0), Y.mean(axis=0)
+    U, _, Vt = np.linalg.svd((X - cx).T @ (Y - cy))
+    d = np.sign(np.linalg.det(Vt.T @ U.T)) or 1.0
+    R = Vt.T @ np.diag([1.0, 1.0, d]) @ U.T
+    return R, cy - R @ cx
+
+
+def _net_surface(f: np.ndarray, columns) -> ReferenceSurface:
+    """The strips ``columns`` of the net ``f`` as one triangle mesh (bilinear quads)."""
+    Vs, Fs, base = [], [], 0
+    for v in columns:
+        V, F = patch_mesh(f[:, v], f[:, v + 1])
+        Vs.append(V)
+        Fs.append(F + base)
+        base += len(V)
+    return ReferenceSurface(np.concatenate(Vs), np.concatenate(Fs))
+
+
+def _frames(P, Q, X, is_b):
+    """Closest points on the strips' own geodesics, tangents and across-directions for the
+    boundary vertices ``X (S, m, 3)`` (``is_b``: on Q, else on P)."""
+    c, t, _ = closest_on_polylines(X, Q if is_b else P)
+    n = unit(np.cross(np.gradient(P, axis=1) + np.gradient(Q, axis=1), Q - P))
+    return c, t, unit(np.cross(n, t))
+
+
+def _order_bounds(T: np.ndarray):
+    """Direction, turn and bounds of :func:`template_order` from a start template ``T (m, 2,
+    2)``: along its chord, its prevailing turn, steps and turns at least ORDER_MARGIN of their
+    mean."""
+    a, b = T[:, 0], T[:, 1]
+    e = unit(0.5 * (a[-1] + b[-1] - a[0] - b[0]))
+    d1, d2 = b[1:] - a[:-1], a[1:] - b[:-1]
+    cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    sign = 1.0 if cross.sum() >= 0 else -1.0
+    step = ORDER_MARGIN * 0.5 * float(np.mean(np.diff(a, axis=0) @ e + np.diff(b, axis=0) @ e))
+    return e, sign, step, ORDER_MARGIN * float(np.mean(np.abs(cross)))
+
+
+def _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight, ruling_weight):
+    """The soft terms and regularizers, their frames (closest points on the geodesics, tangent
+    planes of the net at the samples' feet) taken at ``x``: held fixed for one round."""
+    m, S = layout.m, layout.S
+    A, B = layout.strips(x)
+    cA, tA, bA = _frames(P, Q, A, False)
+    cB, tB, bB = _frames(P, Q, B, True)
+
+    def grid(a, b):                                   # (S, m, 3) pairs -> (m, 2S, 3)
+        return np.stack([np.moveaxis(a, 0, 1), np.moveaxis(b, 0, 1)], axis=2).reshape(m, 2 * S, 3)
+
+    c, t, across = grid(cA, cB), grid(tA, tB), grid(bA, bB)
+    p = x[: 3 * layout.n_vertices].reshape(-1, 3)
+    feet, planes = reference.closest(np.einsum("kc,kcj->kj", samples[1], p[samples[0]]))
+    terms = [
+        Term("closeness", lambda x: plane_offsets(x, layout, samples, feet, planes),
+             CLOSENESS_WEIGHT, False),
+        Term("across", lambda x: lateral(x, layout, c.reshape(-1, 3), across.reshape(-1, 3)),
+             ACROSS_WEIGHT, False),
+        Term("ruling_fairness", lambda x: ruling_fairness(x, layout),
+             Schedule.constant(ruling_weight), False, True),
+
+        Term("slide_fairness", lambda x: slide_fairness(x, layout, c, t), SLIDE_FAIRNESS,
+             False, True)]
+    if seam_dirs is not None:
+        terms.append(Term("seam", lambda x: seam(x, layout, seam_dirs),
+                          Schedule.constant(seam_weight), False))
+    return terms
+
+
+def fit_template(f: np.ndarray, columns: list[int], A0: np.ndarray, B0: np.ndarray, *,
+                 seam_weight: float = SEAM_WEIGHT, ruling_fairness: float = RULING_FAIRNESS,
+                 rounds: int = FIT_ROUNDS) -> TemplateFit:
+    """Fit one template to the strips ``columns`` of the net ``f (m, n, 3)``, starting from the
+    planar strips ``A0, B0 (S, m, 3)`` (see the module). Returns the rebuilt strips.
+
+    The soft terms' frames follow the strips: ``rounds`` guided projections, each with the
+    frames taken where the previous one ended (warm start, the same factorization pattern),
+    then a projection onto the hard terms alone (the least change that satisfies them)."""
+    f = np.asarray(f, dtype=float)
+    columns = np.asarray(columns, dtype=int)
+    P, Q = np.moveaxis(f[:, columns], 1, 0), np.moveaxis(f[:, columns + 1], 1, 0)
+    S, m = P.shape[:2]
+    center = f.reshape(-1, 3).mean(axis=0)
+    edges = np.concatenate([np.linalg.norm(np.diff(A0, axis=1), axis=-1).ravel(),
+                            np.linalg.norm(B0 - A0, axis=-1).ravel()])
+    scale = 1.0 / float(np.mean(edges))
+    P, Q = (P - center) * scale, (Q - center) * scale
+    A, B = (A0 - center) * scale, (B0 - center) * scale
+    layout = StripSetLayout(m, S)
+    T0 = start_template(A, B)
+    x = layout.pack(A, B, T0)
+    order = _order_bounds(T0)
+    x[layout.slack_offset:] = np.sqrt(np.maximum(
+        template_order(x, layout, *order)[0] + x[layout.slack_offset:] ** 2, 0.0))
+    # the end rulings: the net's end v-edges (no slide along the geodesic there)
+    ends = np.r_[layout.vid[0], layout.vid[-1]]
+    end_c = np.stack([np.stack([P[:, r], Q[:, r]], axis=1).reshape(2 * S, 3) for r in (0, -1)])
+    tP, tQ = unit(np.gradient(P, axis=1)), unit(np.gradient(Q, axis=1))
+    end_t = np.stack([np.stack([tP[:, r], tQ[:, r]], axis=1).reshape(2 * S, 3) for r in (0, -1)])
+    hard = [
+        Term("template_isometry", lambda x: template_isometry(x, layout), Schedule.constant(1.0)),
+        Term("planarity", lambda x: planarity(x, layout), Schedule.constant(1.0)),
+        Term("ends", lambda x: lateral(x, layout, end_c.reshape(-1, 3), end_t.reshape(-1, 3),
+                                       ends), Schedule.constant(1.0)),
+        Term("template_gauge", lambda x: template_gauge(x, layout), Schedule.constant(1.0)),
+        Term("template_order", lambda x: template_order(x, layout, *order),
+             Schedule.constant(1.0))]
+    reference = _net_surface((f - center) * scale, columns)
+    samples = strip_quad_samples(layout)
+    seam_dirs = _seam_directions(P, Q) if seam_weight > 0 and S > 1 else None
+    workspace, iterations = None, 0
+    for _ in range(rounds):
+        soft = _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight,
+                           ruling_fairness)
+        fitted = guided_projection(x, hard + soft, tol=FIT_TOL, max_iter=ROUND_MAX_ITER,
+                                   workspace=workspace)
+        x, workspace, iterations = fitted.x, fitted.workspace, iterations + fitted.iterations
+    result = guided_projection(x, hard, tol=FIT_TOL, max_iter=PROJECTION_MAX_ITER)
+    template = layout.template(result.x)
+    A1, B1 = bend_template(template, *layout.strips(result.x))
+    log.debug("template fit: %s after %d iterations, R %.3g", result.status,
+              iterations + result.iterations, result.R)
+    return TemplateFit(A=A1 / scale + center, B=B1 / scale + center, template=template / scale,
+                       variant="shared-vertices", status=result.status,
+                       iterations=iterations + result.iterations, R=result.R / scale)
+
+
+def _seam_directions(P, Q):
+    """Unit directions ``(2, m, S−1, 3)`` across the geodesic shared by strips s and s+1 and
+    along the surface normal there, at the net's vertices."""
+    g = Q[:-1]                                                             # == P[1:]
+    t = unit(np.gradient(g, axis=1))
+    n = unit(np.cross(np.gradient(P, axis=1) + np.gradient(Q, axis=1), Q - P))
+    normal = unit(n[:-1] + n[1:])
+    across = unit(np.cross(normal, t))
+    return np.moveaxis(np.stack([across, normal]), 2, 1)

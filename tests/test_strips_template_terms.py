@@ -1,0 +1,87 @@
+"""Terms of the one-template fit of planarize-strips (template isometry, gauge, ruling
+fairness, seam) and the shared planarity/lateral/closeness terms on its layout: Jacobians
+against finite differences, fixed patterns, and what their residuals measure."""
+
+import numpy as np
+import pytest
+from jacobian_check import FrozenReference, assert_jacobian_matches_finite_differences
+
+from dgpc_cli.core.constraints.planarity import lateral, planarity, surface_closeness
+from dgpc_cli.core.constraints.template import (
+    StripSetLayout,
+    plane_offsets,
+    ruling_fairness,
+    seam,
+    strip_quad_samples,
+    template_gauge,
+    template_isometry,
+    template_order,
+)
+
+NAMES = ["template_isometry", "template_gauge", "template_order", "ruling_fairness", "seam",
+         "plane_offsets", "planarity", "lateral", "surface_closeness"]
+
+
+def _state(layout, rng):
+    m, S = layout.m, layout.S
+    u = np.broadcast_to(np.linspace(0.0, 1.0, m)[None, :, None], (S, m, 1))
+    A = np.concatenate([u, np.zeros_like(u) + np.arange(S)[:, None, None] * 0.4,
+                        0.2 * np.sin(3 * u)], axis=-1)
+    B = A + np.array([0.35, 0.05, 0.1])
+    T = np.stack([np.c_[np.zeros(m), np.linspace(0, 1, m)],
+                  np.c_[np.full(m, 0.4), np.linspace(0, 1, m)]], axis=1)
+    x = layout.pack(A + 0.03 * rng.standard_normal(A.shape), B, T)
+    return x + 0.05 * rng.standard_normal(x.size)
+
+
+def _terms(layout, rng):
+    d = rng.standard_normal((2, layout.m, layout.S - 1, 3))
+    d /= np.linalg.norm(d, axis=-1, keepdims=True)
+    points = rng.standard_normal((layout.n_vertices, 3))
+    t = rng.standard_normal((layout.n_vertices, 3))
+    samples = strip_quad_samples(layout)
+    frozen = FrozenReference(len(samples[0]), rng)
+    return {"template_isometry": lambda x: template_isometry(x, layout),
+            "template_gauge": lambda x: template_gauge(x, layout),
+            "template_order": lambda x: template_order(x, layout, [0.6, 0.8], -1.0, 0.1, 0.2),
+            "ruling_fairness": lambda x: ruling_fairness(x, layout),
+            "seam": lambda x: seam(x, layout, d),
+            "plane_offsets": lambda x: plane_offsets(x, layout, samples, frozen.p, frozen.n),
+            "planarity": lambda x: planarity(x, layout),
+            "lateral": lambda x: lateral(x, layout, points, t),
+            "surface_closeness": lambda x: surface_closeness(x, layout, frozen, samples)}
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_jacobian_matches_finite_differences(name):
+    rng = np.random.default_rng(3)
+    layout = StripSetLayout(4, 3)
+    x = _state(layout, rng)
+    assert_jacobian_matches_finite_differences(_terms(layout, rng)[name], x, layout.size)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_jacobian_pattern_does_not_depend_on_values(name):
+    rng = np.random.default_rng(5)
+    layout = StripSetLayout(4, 2)
+    term = _terms(layout, rng)[name]
+    _, J1 = term(_state(layout, rng))
+    _, J2 = term(_state(layout, rng))
+    assert np.array_equal(J1.row, J2.row) and np.array_equal(J1.col, J2.col)
+
+
+def test_template_isometry_vanishes_on_congruent_strips_only():
+    """Two strips that are rigid motions of the template quads (one of them bent about a
+    ruling) have zero residuals; a stretched quad does not."""
+    layout = StripSetLayout(3, 2)
+    T = np.array([[[0.0, 0.0], [1.0, 0.0]], [[0.1, 2.0], [1.1, 2.1]], [[0.0, 4.0], [1.2, 4.0]]])
+    flat = np.concatenate([T, np.zeros((3, 2, 1))], axis=-1)
+    A0, B0 = flat[:, 0], flat[:, 1]
+    c, s = np.cos(0.7), np.sin(0.7)
+    R = np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
+    A1, B1 = A0 @ R.T + [5.0, 1.0, 2.0], B0 @ R.T + [5.0, 1.0, 2.0]
+    phi, _ = template_isometry(layout.pack(np.stack([A0, A1]), np.stack([B0, B1]), T), layout)
+    assert np.abs(phi).max() <= 1e-12
+    B1[2] += [0.0, 0.3, 0.0]
+    phi, _ = template_isometry(layout.pack(np.stack([A0, A1]), np.stack([B0, B1]), T), layout)
+    assert np.abs(phi).max() > 0.1
