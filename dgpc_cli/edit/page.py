@@ -9,6 +9,8 @@ vertex, the pleated and creased vertices, the handles and the status line.
 
 from __future__ import annotations
 
+import contextlib
+import io
 import logging
 import threading
 
@@ -24,6 +26,12 @@ SURFACE, GEODESICS, FLAGGED, SELECTED = (205, 205, 200), (200, 40, 40), (255, 0,
     (30, 120, 255)
 
 
+#: The initial camera's distance from the net's centre, in diagonals of its bounding box.
+CAMERA_DISTANCE = 0.9
+#: Size of a handle's gizmo, in edge lengths of the net.
+GIZMO_SIZE = 2.0
+
+
 def quad_faces(m: int, n: int) -> np.ndarray:
     """Two triangles per quad of an m×n grid, row-major vertex ids ``u*n+v``."""
     vid = np.arange(m * n).reshape(m, n)
@@ -37,6 +45,20 @@ def geodesic_segments(f: np.ndarray) -> np.ndarray:
     return np.stack([f[:-1], f[1:]], axis=2).reshape(-1, 2, 3)
 
 
+def initial_camera(f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The initial camera (look-at point, position; up +z): the net's centre seen along its
+    normal at the middle, from ``CAMERA_DISTANCE`` diagonals of its bounding box."""
+    pts = f.reshape(-1, 3)
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    centre = 0.5 * (lo + hi)
+    m, n = f.shape[:2]
+    normal = np.cross(f[-1, n // 2] - f[0, n // 2], f[m // 2, -1] - f[m // 2, 0])
+    normal = normal / (np.linalg.norm(normal) or 1.0)
+    if float(np.dot(normal, centre - pts.mean(axis=0))) < 0:
+        normal = -normal                      # from the side the net bulges towards
+    return centre, centre + CAMERA_DISTANCE * float(np.linalg.norm(hi - lo)) * normal
+
+
 class EditPage:
     """A viser server on ``host:port`` (port 0: a free one) showing the frames of a session."""
 
@@ -45,9 +67,13 @@ class EditPage:
                  max_strain: float = 3e-4):
         self.actions = actions
         self.limit = max_strain
-        self.server = viser.ViserServer(host=host, port=port, label=title, verbose=False)
+        banner = io.StringIO()
+        with contextlib.redirect_stdout(banner):     # viser prints its address: stdout is data
+            self.server = viser.ViserServer(host=host, port=port, label=title, verbose=False)
+        log.debug("%s", banner.getvalue())
         self.server.gui.configure_theme(control_width="large", show_logo=False)
         self.server.scene.set_up_direction("+z")
+        self.server.scene.configure_fog(1e9, 2e9, enabled=False)   # a far net stays vivid
         self.shape = first.f.shape[:2]
         m, n = self.shape
         self._lock = threading.RLock()
@@ -59,15 +85,17 @@ class EditPage:
         if reference is not None:
             self.server.scene.add_mesh_simple("/reference", reference[0], reference[1],
                                               color=(150, 170, 200), opacity=0.35,
-                                              side="double")
+                                              side="double", cast_shadow=False,
+                                              receive_shadow=False)
         self.mesh = self.server.scene.add_mesh_simple("/net", f, quad_faces(m, n),
-                                                      color=SURFACE, side="double")
+                                                      color=SURFACE, side="double",
+                                                      cast_shadow=False, receive_shadow=False)
         self.mesh.on_click(self._clicked)
         self.lines = self.server.scene.add_line_segments(
             "/net/geodesics", geodesic_segments(first.f), colors=GEODESICS, line_width=2.0)
         self.points = self.server.scene.add_point_cloud(
             "/net/field", f, colors=field_colours(first.field, max_strain),
-            point_size=0.35 * self.scale, point_shape="circle")
+            point_size=0.2 * self.scale, point_shape="circle")
         self.flags = self.server.scene.add_point_cloud(
             "/net/flags", np.zeros((1, 3)), colors=FLAGGED, point_size=0.8 * self.scale,
             point_shape="diamond", visible=False)
@@ -103,23 +131,11 @@ class EditPage:
         self.fab_on.on_update(lambda _: self.actions.fabrication(self.fab_on.value))
 
     def _view(self, f: np.ndarray) -> None:
-        """The initial camera: the net's centre seen along its mean normal, from far enough to
-        see it whole."""
-        pts = f.reshape(-1, 3)
-        centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
-        du, dv = f[-1, f.shape[1] // 2] - f[0, f.shape[1] // 2], f[f.shape[0] // 2, -1] - \
-            f[f.shape[0] // 2, 0]
-        normal = np.cross(du, dv)
-        normal = normal / (np.linalg.norm(normal) or 1.0)
-        out = centre - pts.mean(axis=0)
-        if float(np.dot(normal, out)) < 0:
-            normal = -normal
-        size = float(np.linalg.norm(pts.max(axis=0) - pts.min(axis=0)))
+        look_at, position = initial_camera(f)
         cam = self.server.initial_camera
-        cam.look_at = tuple(centre)
-        cam.position = tuple(centre + 1.3 * size * normal)
+        cam.look_at = tuple(look_at)
+        cam.position = tuple(position)
         cam.up = (0.0, 0.0, 1.0)
-        self.camera = (centre, centre + 1.3 * size * normal)
 
     @property
     def url(self) -> str:
@@ -203,7 +219,7 @@ class EditPage:
             gizmo = self._gizmos.get(index)
             if gizmo is None:
                 gizmo = self.server.scene.add_transform_controls(
-                    f"/handles/h{index[0]}_{index[1]}", scale=2.0 * self.scale,
+                    f"/handles/h{index[0]}_{index[1]}", scale=GIZMO_SIZE * self.scale,
                     disable_rotations=True, depth_test=False, position=target)
                 gizmo.on_update(lambda event, i=index, g=gizmo: self._gizmo_moved(i, g, event))
                 self._gizmos[index] = gizmo

@@ -1,0 +1,153 @@
+"""``dgpc edit``: the page in a headless Chromium (Debian's ``chromium``, which ``.ci/run``
+installs; missing, the test fails saying so): it shows the net, a drag of a handle's gizmo
+changes the net and the status, Save writes the artifact; the page listens on this machine
+only unless --host is given."""
+
+import io
+import json
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from browser import HEIGHT, WIDTH, Browser
+from cli_helpers import dgpc
+from PIL import Image
+
+ROOT = Path(__file__).resolve().parents[1]
+HANDLES = ROOT / "samples" / "handles" / "wall-21x13.json"
+#: Seconds the server may take to print its address, at most.
+START_TIMEOUT = 120
+
+
+@pytest.fixture(scope="module")
+def wall(tmp_path_factory):
+    d = tmp_path_factory.mktemp("edit-page")
+    dgpc("init", "--surface", "revolution", "--profile", ROOT / "samples/profiles/wall.csv",
+         "--rows", 21, "--cols", 13, "--span", 60, "--units", "m", "-o", d / "wall")
+    return d
+
+
+def serve(d: Path, *extra):
+    """Start ``dgpc edit`` on the wall; return the process and the address it printed."""
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "dgpc_cli.cli.main", "edit", str(d / "wall"), "--handles",
+         str(HANDLES), "--steps", "5", "-o", str(d / "out"), "--force", *extra],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=d)
+    end = time.monotonic() + START_TIMEOUT
+    line = ""
+    while not line.startswith("http") and time.monotonic() < end and proc.poll() is None:
+        line = proc.stdout.readline().strip()
+    if not line.startswith("http"):
+        proc.kill()
+        raise AssertionError(f"no address on stdout: {line!r} {proc.stderr.read()!r}")
+    return proc, line
+
+
+def stop(proc) -> None:
+    proc.terminate()
+    try:
+        proc.wait(timeout=20)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait(timeout=20)
+
+
+def status_line(text: str) -> str:
+    lines = [ln for ln in text.splitlines() if ln.strip().startswith(("✅", "⚠", "⏳"))
+             or "converged" in ln or "dragging" in ln or "missed" in ln]
+    return lines[0] if lines else ""
+
+
+def pixels(png: bytes) -> np.ndarray:
+    return np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(int)
+
+
+def gizmo_arrow(im: np.ndarray) -> tuple[float, float]:
+    """A point on the green (y) arrow of the lowest gizmo left of the panel."""
+    r, g, b = im[..., 0], im[..., 1], im[..., 2]
+    ys, xs = np.nonzero((g > 150) & (g - r > 60) & (b < 180))
+    keep = (xs < 0.55 * WIDTH) & (ys > 0.5 * HEIGHT)
+    xs, ys = xs[keep], ys[keep]
+    assert xs.size, "no gizmo arrow on the page"
+    low = ys >= ys.max() - 6
+    return float(np.median(xs[low])), float(np.median(ys[low]))
+
+
+def test_page_shows_the_net_and_a_drag_changes_it(wall, tmp_path):
+    proc, url = serve(wall)
+    try:
+        assert url.startswith("http://127.0.0.1:")
+        with Browser() as browser:
+            browser.open(url)
+            first = status_line(browser.wait_text("converged", 180))
+            time.sleep(2)
+            before = pixels(browser.screenshot(tmp_path / "before.png"))
+            net = before[:, : int(0.55 * WIDTH)]
+            # the net is drawn: grey surface, red geodesics
+            grey = (abs(net[..., 0] - net[..., 1]) < 12) & (net[..., 0] < 200) & \
+                (net[..., 0] > 60)
+            red = (net[..., 0] > 150) & (net[..., 1] < 90) & (net[..., 2] < 90)
+            assert grey.sum() > 20000 and red.sum() > 200, (grey.sum(), red.sum())
+
+            x, y = gizmo_arrow(before)
+            browser.drag((x, y), (x - 90, y), steps=5, pause=0.2)
+            end = time.monotonic() + 300
+            now = first
+            while now == first and time.monotonic() < end:
+                time.sleep(1)
+                now = status_line(browser.text())
+            assert now != first, "the status did not change after the drag"
+            browser.wait_text("iterations", 300)
+            after = pixels(browser.screenshot(tmp_path / "after.png"))
+            moved = np.abs(after[:, : int(0.55 * WIDTH)] - net).sum(axis=-1) > 60
+            assert moved.sum() > 500, moved.sum()
+
+            browser.call("Runtime.evaluate", expression=(
+                "[...document.querySelectorAll('button')].find(b => b.innerText.includes("
+                "'Save artifact')).click()"))
+            browser.wait_text("Saved", 300)
+        saved = json.loads((wall / "out-handles.json").read_text())["handles"]
+        moved_handle = [h for h in saved if h["index"] == [0, 0]][0]["target"]
+        start = [h for h in json.loads(HANDLES.read_text())["handles"]
+                 if h["index"] == [0, 0]][0]["target"]
+        assert np.linalg.norm(np.subtract(moved_handle, start)) > 1e-3
+        art = json.loads((wall / "out.json").read_text())
+        assert art["kind"] == "net" and art["inputs"]["handles"]["path"] == "out-handles.json"
+    finally:
+        stop(proc)
+
+
+def _outside_address() -> str | None:
+    """An address of this machine that is not loopback, if it has one."""
+    try:
+        with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+            s.connect(("192.0.2.1", 9))           # TEST-NET: nothing is sent
+            address = s.getsockname()[0]
+    except OSError:
+        return None
+    return None if address.startswith("127.") else address
+
+
+def test_the_page_listens_on_loopback_only_unless_host_is_given(wall):
+    proc, url = serve(wall)
+    try:
+        port = int(url.rstrip("/").rsplit(":", 1)[1])
+        with socket.create_connection(("127.0.0.1", port), timeout=10):
+            pass
+        outside = _outside_address()
+        assert outside is not None, "this machine has no address but loopback to try"
+        with pytest.raises(OSError):
+            socket.create_connection((outside, port), timeout=10).close()
+    finally:
+        stop(proc)
+    proc, url = serve(wall, "--host", "0.0.0.0")
+    try:
+        port = int(url.rstrip("/").rsplit(":", 1)[1])
+        with socket.create_connection((outside, port), timeout=10):
+            pass
+    finally:
+        stop(proc)
