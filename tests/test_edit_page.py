@@ -66,6 +66,30 @@ def pixels(png: bytes) -> np.ndarray:
     return np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(int)
 
 
+def net_pixels(im: np.ndarray) -> tuple[int, int]:
+    """Pixels of the net's grey surface and of its red geodesics, left of the panel."""
+    net = im[:, : int(0.55 * WIDTH)]
+    grey = (abs(net[..., 0] - net[..., 1]) < 12) & (net[..., 0] < 200) & (net[..., 0] > 60)
+    red = (net[..., 0] > 150) & (net[..., 1] < 90) & (net[..., 2] < 90)
+    return int(grey.sum()), int(red.sum())
+
+
+def drawn(browser, path: Path, timeout: float = 180) -> np.ndarray:
+    """A screenshot once the net is drawn in full colour (software WebGL fades the scene in
+    slowly; a mouse move over the empty canvas asks for a new frame)."""
+    end = time.monotonic() + timeout
+    k = 0
+    while True:
+        im = pixels(browser.screenshot(path))
+        grey, red = net_pixels(im)
+        if grey > 20000 and red > 200:
+            return im
+        assert time.monotonic() < end, f"the net is not drawn: {grey} grey, {red} red pixels"
+        k += 1
+        browser.call("Input.dispatchMouseEvent", type="mouseMoved", x=40 + k % 5, y=HEIGHT - 40)
+        time.sleep(2)
+
+
 def gizmo_arrow(im: np.ndarray) -> tuple[float, float]:
     """A point on the green (y) arrow of the lowest gizmo left of the panel."""
     r, g, b = im[..., 0], im[..., 1], im[..., 2]
@@ -84,14 +108,8 @@ def test_page_shows_the_net_and_a_drag_changes_it(wall, tmp_path):
         with Browser() as browser:
             browser.open(url)
             first = status_line(browser.wait_text("converged", 180))
-            time.sleep(2)
-            before = pixels(browser.screenshot(tmp_path / "before.png"))
+            before = drawn(browser, tmp_path / "before.png")
             net = before[:, : int(0.55 * WIDTH)]
-            # the net is drawn: grey surface, red geodesics
-            grey = (abs(net[..., 0] - net[..., 1]) < 12) & (net[..., 0] < 200) & \
-                (net[..., 0] > 60)
-            red = (net[..., 0] > 150) & (net[..., 1] < 90) & (net[..., 2] < 90)
-            assert grey.sum() > 20000 and red.sum() > 200, (grey.sum(), red.sum())
 
             x, y = gizmo_arrow(before)
             browser.drag((x, y), (x - 90, y), steps=5, pause=0.2)

@@ -40,7 +40,7 @@ log = logging.getLogger(__name__)
 
 #: Guided-projection iterations per drag event (paper §5.2: iterations run while the mouse
 #: moves): enough for the net to follow the handle, few enough to answer the next event.
-LIVE_ITER = 2
+LIVE_ITER = 1
 
 
 class Superseded(Exception):
