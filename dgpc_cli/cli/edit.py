@@ -131,16 +131,16 @@ def _serve(session: EditSession, host: str, port: int, output: Path, limit: floa
             solver.submit(Request("drag", (u, v, target), end=end))
 
         def pin(self, u, v):
-            solver.submit(Request("pin", (u, v)))
+            solver.submit(Request("pin", (u, v), end=True))
 
         def release(self, u, v):
-            solver.submit(Request("release", (u, v)))
+            solver.submit(Request("release", (u, v), end=True))
 
         def undo(self):
-            solver.submit(Request("undo"))
+            solver.submit(Request("undo", end=True))
 
         def redo(self):
-            solver.submit(Request("redo"))
+            solver.submit(Request("redo", end=True))
 
         def save(self):
             solver.submit(Request("call", (save,)))

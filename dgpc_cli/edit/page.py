@@ -29,7 +29,13 @@ SURFACE, GEODESICS, FLAGGED, SELECTED = (205, 205, 200), (200, 40, 40), (255, 0,
 #: The initial camera's distance from the net's centre, in diagonals of its bounding box.
 CAMERA_DISTANCE = 0.9
 #: Size of a handle's gizmo, in edge lengths of the net.
-GIZMO_SIZE = 2.0
+GIZMO_SIZE = 3.0
+#: Width of its lines, in pixels (wider lines are easier to grab).
+GIZMO_LINE = 6.0
+#: The push slider: a handle moved along the net's normal, ± this many edge lengths.
+PUSH_RANGE = 3.0
+#: Seconds without a slider move after which the push counts as released (the net settles).
+PUSH_SETTLE = 0.4
 
 
 def quad_faces(m: int, n: int) -> np.ndarray:
@@ -38,6 +44,16 @@ def quad_faces(m: int, n: int) -> np.ndarray:
     a, b, c, d = vid[:-1, :-1], vid[1:, :-1], vid[1:, 1:], vid[:-1, 1:]
     return np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3),
                            np.stack([a, c, d], -1).reshape(-1, 3)])
+
+
+def vertex_normal(f: np.ndarray, u: int, v: int) -> np.ndarray:
+    """Unit normal of the net ``f (m, n, 3)`` at vertex ``(u, v)`` (cross product of the
+    central, at the rim one-sided, differences along u and v)."""
+    m, n = f.shape[:2]
+    du = f[min(u + 1, m - 1), v] - f[max(u - 1, 0), v]
+    dv = f[u, min(v + 1, n - 1)] - f[u, max(v - 1, 0)]
+    normal = np.cross(du, dv)
+    return normal / (np.linalg.norm(normal) or 1.0)
 
 
 def geodesic_segments(f: np.ndarray) -> np.ndarray:
@@ -67,6 +83,8 @@ class EditPage:
                  max_strain: float = 3e-4):
         self.actions = actions
         self.limit = max_strain
+        # a browser tab that closes mid-handshake is no error of the design session
+        logging.getLogger("websockets").setLevel(logging.CRITICAL)
         banner = io.StringIO()
         with contextlib.redirect_stdout(banner):     # viser prints its address: stdout is data
             self.server = viser.ViserServer(host=host, port=port, label=title, verbose=False)
@@ -80,6 +98,9 @@ class EditPage:
         self._gizmos: dict[tuple[int, int], object] = {}
         self._dragging: set[tuple[int, int]] = set()
         self.selected: tuple[int, int] | None = None
+        self._push_base: tuple[np.ndarray, np.ndarray] | None = None   # (target, normal)
+        self._push_timer: threading.Timer | None = None
+        self._resetting = False
         f = first.f.reshape(-1, 3)
         self.scale = float(np.median(np.linalg.norm(first.f[1:] - first.f[:-1], axis=-1)))
         if reference is not None:
@@ -112,6 +133,9 @@ class EditPage:
         self.figures = gui.add_markdown(_field_markdown(first, self.limit))
         with gui.add_folder("Handles"):
             self.selection = gui.add_markdown("Click a vertex of the net to add a handle.")
+            self.push = gui.add_slider("Push selected (edges)", -PUSH_RANGE, PUSH_RANGE, 0.05,
+                                       0.0, hint="Drag to move the selected handle along the "
+                                                 "net's normal; let go and the net settles.")
             release = gui.add_button("Release selected handle")
             pin = gui.add_button("Pin selected vertex")
             undo = gui.add_button("Undo")
@@ -129,6 +153,7 @@ class EditPage:
         redo.on_click(lambda _: self.actions.redo())
         save.on_click(lambda _: self._save())
         self.fab_on.on_update(lambda _: self.actions.fabrication(self.fab_on.value))
+        self.push.on_update(lambda _: self._pushed())
 
     def _view(self, f: np.ndarray) -> None:
         look_at, position = initial_camera(f)
@@ -158,6 +183,11 @@ class EditPage:
             self.actions.pin(u, v)
 
     def select(self, index: tuple[int, int] | None) -> None:
+        if index != self.selected:
+            self._push_base = None
+            self._resetting = True
+            self.push.value = 0.0
+            self._resetting = False
         self.selected = index
         if index is None:
             self.marker.visible = False
@@ -168,12 +198,31 @@ class EditPage:
         held = "a handle" if index in self._gizmos else "not a handle"
         self.selection.content = f"Selected vertex **({index[0]}, {index[1]})**: {held}."
 
+    def _pushed(self) -> None:
+        """The push slider moved: drag the selected handle along the normal; the drag ends
+        ``PUSH_SETTLE`` seconds after the last move."""
+        if self._resetting or self.selected is None:
+            return
+        index = self.selected
+        if self._push_base is None:
+            self._push_base = (self._f[index].copy(), vertex_normal(self._f, *index))
+        base, normal = self._push_base
+        target = tuple(float(c) for c in base + self.push.value * self.scale * normal)
+        self.actions.drag(index[0], index[1], target, False)
+        if self._push_timer is not None:
+            self._push_timer.cancel()
+        self._push_timer = threading.Timer(
+            PUSH_SETTLE, lambda: self.actions.drag(index[0], index[1], target, True))
+        self._push_timer.daemon = True
+        self._push_timer.start()
+
     def _save(self) -> None:
         self.saved.content = "saving…"
         self.actions.save()
 
     def _gizmo_moved(self, index: tuple[int, int], handle, event) -> None:
         phase = getattr(event, "phase", "update")
+        log.debug("gizmo %s: %s at %s", index, phase, tuple(handle.position))
         if phase == "start":
             self._dragging.add(index)
             self.select(index)
@@ -220,7 +269,8 @@ class EditPage:
             if gizmo is None:
                 gizmo = self.server.scene.add_transform_controls(
                     f"/handles/h{index[0]}_{index[1]}", scale=GIZMO_SIZE * self.scale,
-                    disable_rotations=True, depth_test=False, position=target)
+                    line_width=GIZMO_LINE, disable_rotations=True, depth_test=False,
+                    position=target)
                 gizmo.on_update(lambda event, i=index, g=gizmo: self._gizmo_moved(i, g, event))
                 self._gizmos[index] = gizmo
             elif index not in self._dragging and frame.settled:
