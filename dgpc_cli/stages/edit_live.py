@@ -36,6 +36,8 @@ class Answer:
     frame: Frame | None
     latency: float
     error: str | None = None
+    #: A full frame (colours, flags, status) that follows a drag's quick one when idle.
+    refresh: bool = False
 
 
 class LiveSolver:
@@ -132,8 +134,17 @@ class LiveSolver:
         except Exception as err:  # noqa: BLE001 - shown on the page's status line
             log.debug("edit: %s failed", request.action, exc_info=True)
             error = str(err)
-        frame = s.frame(fabrication=self.fabrication() and s.settled
-                        and request.action != "drag")
-        self._answer(Answer(request, frame, time.perf_counter() - request.arrived, error))
+        if request.action == "drag":
+            # the net first (the latency a designer feels), its figures when nothing waits
+            self._answer(Answer(request, s.quick_frame(), time.perf_counter() - request.arrived,
+                                error))
+            with self._cond:
+                waiting = bool(self._queue)
+            if not waiting:
+                self._answer(Answer(request, s.frame(), time.perf_counter() - request.arrived,
+                                    refresh=True))
+        else:
+            frame = s.frame(fabrication=self.fabrication() and s.settled)
+            self._answer(Answer(request, frame, time.perf_counter() - request.arrived, error))
         if request.end:
             self.submit(Request("settle"))

@@ -47,6 +47,8 @@ def replay(session: EditSession, events: list[DragEvent], output: Path,
     outcome = session.save(output, handles_path)
     records, settles = [], []
     for a in answers:
+        if a.refresh:
+            continue
         if a.request.action == "settle":
             if a.frame is not None:
                 settles.append({"seconds": a.latency, "state": a.frame.state,

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import logging
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -85,6 +85,7 @@ class _Live:
     problem: object
     x: np.ndarray
     workspace: object = None
+    terms: list = field(default_factory=list)     # bound once; a drag rebinds the handles
 
 
 @dataclass
@@ -104,6 +105,7 @@ class EditSession:
         self._live: _Live | None = None
         self._iterations = 0
         self._seconds = 0.0
+        self._shown: Frame | None = None
 
     # -- what is shown -------------------------------------------------------------------
     @property
@@ -125,6 +127,19 @@ class EditSession:
         ids = np.fromiter(self.handles, dtype=np.int64, count=len(self.handles))
         targets = np.asarray(list(self.handles.values()), dtype=np.float64) * self.prepared.mm
         return ids, targets
+
+    def quick_frame(self) -> Frame:
+        """The net on screen with the colours, flags and status of the last full
+        :meth:`frame` (what a drag event shows at once; the full frame follows when the solver
+        is idle)."""
+        last = self._shown
+        if last is None or self.settled:
+            return self.frame()
+        n = self.shape[1]
+        return replace(last, f=self.f_mm / self.prepared.mm,
+                       handles=[(vid // n, vid % n, t) for vid, t in self.handles.items()],
+                       state="dragging" if last.settled else last.state, settled=False,
+                       iterations=self._iterations, seconds=self._seconds, fabrication=None)
 
     def frame(self, fabrication: bool = False) -> Frame:
         """The net on screen, coloured by strain against the input (isometric) or by the panel
@@ -153,13 +168,14 @@ class EditSession:
             state, message = self._judged()
         mm = self.prepared.mm
         handles = [(vid // n, vid % n, target) for vid, target in self.handles.items()]
-        return Frame(f=f_mm / mm, field=np.asarray(values, dtype=float), field_name=name,
+        self._shown = Frame(f=f_mm / mm, field=np.asarray(values, dtype=float), field_name=name,
                      pleated=pleated, creased=creased_vertices(f_mm), handles=handles,
                      state=state if self.outcome is not None or not self.handles
                      else f"dragging ({state.replace('_', ' ')})",
                      message=message, settled=self.settled, iterations=self._iterations,
                      seconds=self._seconds,
                      fabrication=self.fabrication() if fabrication and self.settled else None)
+        return self._shown
 
     def _judged(self) -> tuple[str, str]:
         """What ``optimize`` would report if its solver stopped at the net on screen."""
@@ -208,9 +224,11 @@ class EditSession:
         self.handles[vid] = tuple(float(c) for c in target)
         self.outcome = None
         ids, targets = self.handle_arrays()
-        live = self._live_problem(ids)
+        live = self._live_problem(ids, targets)
         t0 = time.perf_counter()
-        result = guided_projection(live.x, live.problem.terms(targets), max_iter=self.live_iter,
+        terms = [live.problem.term("handles", targets) if t.name == "handles" else t
+                 for t in live.terms]
+        result = guided_projection(live.x, terms, max_iter=self.live_iter,
                                    tol=self.prepared.settings.tol,
                                    backend=self.prepared.settings.backend,
                                    workspace=live.workspace,
@@ -219,7 +237,7 @@ class EditSession:
         self.f_mm = live.problem.vertices(live.x)
         self._iterations, self._seconds = result.iterations, time.perf_counter() - t0
 
-    def _live_problem(self, ids: np.ndarray) -> _Live:
+    def _live_problem(self, ids: np.ndarray, targets: np.ndarray) -> _Live:
         key = tuple(int(i) for i in ids)
         if self._live is None or self._live.key != key:
             p = self.prepared
@@ -227,7 +245,8 @@ class EditSession:
                                   handle_ids=ids, handle_targets=None, soft=SOFT[self.mode],
                                   boundary_ids=p.rim)
             workspace = self._live.workspace if self._live is not None else None
-            self._live = _Live(key, problem, problem.x_from_vertices(self.f_mm), workspace)
+            self._live = _Live(key, problem, problem.x_from_vertices(self.f_mm), workspace,
+                               problem.terms(targets))
         return self._live
 
     def settle(self, progress=None) -> OptimizeOutcome | None:
