@@ -1,6 +1,7 @@
 """``make bench``: ``dgpc edit`` latency, through ``--replay`` (the page's solver thread
-without a page): the demo wall's handle pattern at 21×13 and 41×41, three handles placed, the
-fourth dragged to its target in 20 moves 40 ms apart, then released.
+without a page): the demo wall's handle pattern at 21×13 and 41×41, three handles placed and
+the fourth held where it starts (the net settled, as the page opens), then the fourth dragged to
+its target in 20 moves 40 ms apart and released.
 
 Prints, per size, the median and largest latency from a drag event to the updated net and its
 figures (server side; events a newer one superseded before they ran are counted apart), and
@@ -35,20 +36,23 @@ def _drags(d: Path, m: int, n: int) -> tuple[Path, Path]:
     subprocess.run([sys.executable, "-m", "dgpc_cli.cli.main", "-q", "init", "--surface",
                     "revolution", "--profile", str(ROOT / "samples/profiles/wall.csv"), "--rows",
                     str(m), "--cols", str(n), "--span", str(span), "--units", "m", "-o",
-                    str(net)], check=True)
+                    str(net)], check=True, capture_output=True)
     f = np.array([[float(c) for c in line.split()[1:]]
                   for line in (d / "wall.obj").read_text().splitlines()
                   if line.startswith("v ")]).reshape(m, n, 3)
-    events = [{"handle": h["index"], "target": h["target"], "time": 0.0} for h in handles[:3]]
     last = handles[3]
     start = f[tuple(last["index"])]
+    held = d / "handles.json"          # three handles placed, the fourth where it starts
+    held.write_text(json.dumps({"handles": [*handles[:3], {"index": last["index"],
+                                                           "offset": [0.0, 0.0, 0.0]}]}))
+    events = []
     for k in range(1, MOVES + 1):
         target = start + (np.array(last["target"]) - start) * k / MOVES
         events.append({"handle": last["index"], "target": target.tolist(),
-                       "time": 0.5 + PERIOD * k, **({"end": True} if k == MOVES else {})})
+                       "time": PERIOD * k, **({"end": True} if k == MOVES else {})})
     path = d / "drags.json"
     path.write_text(json.dumps({"events": events}))
-    return net, path
+    return net, held, path
 
 
 def main() -> None:
@@ -58,12 +62,12 @@ def main() -> None:
     for (m, n), target in SIZES.items():
         with tempfile.TemporaryDirectory() as tmp:
             d = Path(tmp)
-            net, drags = _drags(d, m, n)
+            net, held, drags = _drags(d, m, n)
             subprocess.run([sys.executable, "-m", "dgpc_cli.cli.main", "-q", "edit", str(net),
-                            "--replay", str(drags), "--steps", "5", "-o", str(d / "out")],
-                           capture_output=True)
+                            "--handles", str(held), "--replay", str(drags), "--steps", "5",
+                            "-o", str(d / "out")], capture_output=True)
             log = json.loads((d / "out-replay.json").read_text())
-            drag = [e for e in log["events"] if e["action"] == "drag" and e["event"] >= 3]
+            drag = [e for e in log["events"] if e["action"] == "drag"]
             shown = [e["latency"] for e in drag if "latency" in e]
             settle = log["settles"][-1] if log["settles"] else {"seconds": float("nan"),
                                                                 "state": "-"}

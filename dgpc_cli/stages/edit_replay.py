@@ -27,11 +27,13 @@ def event_request(event: DragEvent, tag) -> Request:
 
 def replay(session: EditSession, events: list[DragEvent], output: Path,
            handles_path: Path | None = None) -> tuple[OptimizeOutcome, dict]:
-    """Feed ``events`` to a :class:`LiveSolver` on ``session`` at their recorded times, let the
+    """Settle the session's handles, then feed ``events`` (their times counted from there) to a
+    :class:`LiveSolver` on ``session`` at their recorded times, let the
     net settle, save the artifact and the handles file (see :meth:`EditSession.save`). Returns
     the outcome and the log: per event its latency (seconds from its arrival to the net
     shown) or ``superseded``, the iterations run, the state shown; per settling run the
     seconds from the drag's end to the settled net."""
+    session.settle()                 # the page, too, opens on the settled net
     answers: list[Answer] = []
     solver = LiveSolver(session, answers.append)
     t0 = time.perf_counter()

@@ -261,7 +261,11 @@ class EditSession:
         t0 = time.perf_counter()
         outcome = optimize_prepared(self.prepared, ids, targets, progress=progress)
         self.outcome, self.f_mm = outcome, outcome.f
-        self._live = None            # the next drag starts from the settled net
+        # the next drag starts from the settled net, with the factorization of the run's
+        # first step (the same terms, so the same pattern)
+        live = self._live = None
+        live = self._live_problem(ids, targets)
+        live.workspace = outcome.steps[0].workspace if outcome.steps else None
         self._iterations, self._seconds = outcome.iterations, time.perf_counter() - t0
         log.info("settled: %s (%s), %d iterations, %.2f s", outcome.status, outcome.message,
                  outcome.iterations, self._seconds)
