@@ -41,6 +41,10 @@ log = logging.getLogger(__name__)
 #: Guided-projection iterations per drag event (paper §5.2: iterations run while the mouse
 #: moves): enough for the net to follow the handle, few enough to answer the next event.
 LIVE_ITER = 1
+#: A drag event factorizes the normal matrix anew every REFACTOR events (and after a step that
+#: was not taken); in between it solves with the last factorization (a chord step), which
+#: costs a fraction of it (41×41: the factorization is most of an iteration).
+REFACTOR = 4
 
 
 class Superseded(Exception):
@@ -86,6 +90,8 @@ class _Live:
     x: np.ndarray
     workspace: object = None
     terms: list = field(default_factory=list)     # bound once; a drag rebinds the handles
+    events: int = 0                               # drag events run on it
+    stepped: bool = False                         # the last event's step was taken
 
 
 @dataclass
@@ -228,11 +234,15 @@ class EditSession:
         t0 = time.perf_counter()
         terms = [live.problem.term("handles", targets) if t.name == "handles" else t
                  for t in live.terms]
+        reuse = live.events % REFACTOR != 0 and live.stepped
         result = guided_projection(live.x, terms, max_iter=self.live_iter,
                                    tol=self.prepared.settings.tol,
                                    backend=self.prepared.settings.backend,
                                    workspace=live.workspace,
-                                   retract=live.problem.layout.orient_edges)
+                                   retract=live.problem.layout.orient_edges,
+                                   reuse_factorization=reuse)
+        live.events += 1
+        live.stepped = any(h.get("step", 0.0) > 0 for h in result.history) or result.success
         live.x, live.workspace = result.x, result.workspace
         self.f_mm = live.problem.vertices(live.x)
         self._iterations, self._seconds = result.iterations, time.perf_counter() - t0
