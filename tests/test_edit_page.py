@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from browser import HEIGHT, WIDTH, Browser
-from cli_helpers import dgpc
+from cli_helpers import wall_net
 from PIL import Image
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -27,8 +27,7 @@ START_TIMEOUT = 120
 @pytest.fixture(scope="module")
 def wall(tmp_path_factory):
     d = tmp_path_factory.mktemp("edit-page")
-    dgpc("init", "--surface", "revolution", "--profile", ROOT / "samples/profiles/wall.csv",
-         "--rows", 21, "--cols", 13, "--span", 60, "--units", "m", "-o", d / "wall")
+    wall_net(d, 21, 13)
     return d
 
 

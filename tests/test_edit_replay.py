@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from cli_helpers import dgpc
+from cli_helpers import dgpc, wall_net
 
 from dgpc_cli.io.net import read_net
 
@@ -18,8 +18,7 @@ ROOT = Path(__file__).resolve().parents[1]
 @pytest.fixture(scope="module")
 def wall(tmp_path_factory):
     d = tmp_path_factory.mktemp("edit-replay")
-    dgpc("init", "--surface", "revolution", "--profile", ROOT / "samples/profiles/wall.csv",
-         "--rows", 21, "--cols", 13, "--span", 60, "--units", "m", "-o", d / "wall")
+    wall_net(d, 21, 13)
     return d
 
 

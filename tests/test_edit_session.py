@@ -4,11 +4,10 @@ file and the crease measure the page flags."""
 
 import json
 import threading
-from pathlib import Path
 
 import numpy as np
 import pytest
-from cli_helpers import dgpc
+from cli_helpers import wall_net
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.drags import read_drags
@@ -22,15 +21,13 @@ from dgpc_cli.stages.optimize_artifact import (
     prepare_optimize,
 )
 
-ROOT = Path(__file__).resolve().parents[1]
 M, N = 9, 7
 
 
 @pytest.fixture(scope="module")
 def wall(tmp_path_factory):
     d = tmp_path_factory.mktemp("edit-session")
-    dgpc("init", "--surface", "revolution", "--profile", ROOT / "samples/profiles/wall.csv",
-         "--rows", M, "--cols", N, "--span", 60, "--units", "m", "-o", d / "wall")
+    wall_net(d, M, N)
     return d
 
 
