@@ -71,7 +71,9 @@ def edit(stem, mode, handles, host, port, drags, steps, max_iter, tol, max_strai
     With --replay the drags file runs without a page: exit code as optimize's (3: the settled
     net misses a tolerance; written anyway).
     """
-    check_writable(output, force)
+    out_json, _ = artifact_paths(output)
+    log_path = out_json.with_name(out_json.stem + "-replay.json")
+    check_writable(output, force, handles_file(output), *([log_path] if drags else []))
     settings = OptimizeSettings(mode, mode_weights(mode), steps=steps, max_iter=max_iter,
                                 tol=tol, max_strain=max_strain, gpc_tol=gpc_tol,
                                 backend=backend)
@@ -83,11 +85,9 @@ def edit(stem, mode, handles, host, port, drags, steps, max_iter, tol, max_strai
         start = {int(i): tuple(float(c) for c in t / prepared.mm)
                  for i, t in zip(ids, targets, strict=True)}
     session = EditSession(prepared, start)
-    out_json, _ = artifact_paths(output)
     if drags is not None:
         events = read_drags(drags, net.shape)
         outcome, latency = replay(session, events, output)
-        log_path = out_json.with_name(out_json.stem + "-replay.json")
         write_log(log_path, latency)
         click.echo(str(out_json))
         shown = [e["latency"] for e in latency["events"] if "latency" in e]
