@@ -69,3 +69,31 @@ def test_replay_of_a_bad_drags_file_is_one_line(wall):
     result = dgpc("edit", wall / "wall", "--replay", bad, "-o", wall / "bad-out", expect=1)
     assert "events[0].handle" in result.stderr and "outside" in result.stderr
     assert not (wall / "bad-out.json").exists()
+
+
+@pytest.mark.parametrize("mode", ["revolution", "isometric"])
+def test_replay_exit_code_and_bytes_are_optimizes_on_a_coarse_wall(tmp_path, mode):
+    """9×7: the middle of row 0 pushed 10 % towards the axis: converged in revolution mode; in
+    isometric mode above a --max-strain of 1e-9 (exit 3 from both, the same bytes written
+    anyway)."""
+    wall_net(tmp_path, 9, 7)
+    f = read_net(tmp_path / "wall").f
+    p = f[0, 3]
+    push = (p - 0.1 * np.array([p[0], p[1], 0.0])).tolist()
+    strict = ["--max-strain", "1e-9"] if mode == "isometric" else []
+    events = [{"handle": [8, 0], "action": "pin", "time": 0.0},
+              {"handle": [8, 6], "action": "pin", "time": 0.0},
+              {"handle": [0, 3], "target": push, "time": 0.1, "end": True}]
+    (tmp_path / "drags.json").write_text(json.dumps({"events": events}))
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    first = dgpc("edit", tmp_path / "wall", "--mode", mode, "--replay", tmp_path / "drags.json",
+                 *strict, "-o", tmp_path / "a" / "out", expect=None)
+    shutil.copy(tmp_path / "a" / "out-handles.json", tmp_path / "b" / "out-handles.json")
+    second = dgpc("optimize", tmp_path / "wall", "--mode", mode, "--handles",
+                  tmp_path / "b" / "out-handles.json", *strict, "-o", tmp_path / "b" / "out",
+                  expect=None)
+    assert first.exit_code == second.exit_code
+    assert first.exit_code == (0 if mode == "revolution" else 3)
+    for name in ("out.json", "out.obj"):
+        assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes()
