@@ -46,3 +46,13 @@ def bent_catenoid_chain(d):
     dgpc("planarize-strips", d / "bent", "-o", d / "strips")
     dgpc("unfold", d / "strips", "-o", d / "flat")
     dgpc("nest", d / "flat", "--sheet", "700x500", "--scale", 100, "-o", d / "sheets")
+
+
+def wall_net(d, rows, cols, name="wall"):
+    """The demo wall's net (``samples/profiles/wall.csv``, 60°, in m) as ``d/name``."""
+    from pathlib import Path
+
+    profile = Path(__file__).resolve().parents[1] / "samples" / "profiles" / "wall.csv"
+    dgpc("init", "--surface", "revolution", "--profile", profile, "--rows", rows, "--cols",
+         cols, "--span", 60, "--units", "m", "-o", d / name)
+    return d / name

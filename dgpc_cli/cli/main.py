@@ -52,6 +52,7 @@ COMMANDS = {
     "laths": ("laths", "laths", "Gridshell laths of two nets and their cut list."),
     "nest": ("nest", "nest", "Nest the flat parts on cut sheets (DXF, SVG, PNG)."),
     "batch": ("batch", "batch", "Run a project of many patches (a facade, a sweep) on Dask."),
+    "edit": ("edit", "edit", "Design by dragging handles in a web page (or replay drags)."),
 }
 
 

@@ -117,10 +117,13 @@ class Problem:
 
     def terms(self, handle_targets=None) -> list[Term]:
         """Bound terms for the solver; ``handle_targets`` overrides the targets (handle steps)."""
-        return [Term(name, self._bind(name, handle_targets), self.weights[name],
-                     hard=name not in self.soft and name not in REGULARIZERS,
-                     regularizer=name in REGULARIZERS)
-                for name in self.active()]
+        return [self.term(name, handle_targets) for name in self.active()]
+
+    def term(self, name: str, handle_targets=None) -> Term:
+        """The bound term ``name`` (a drag rebinds only ``handles`` to new targets)."""
+        return Term(name, self._bind(name, handle_targets), self.weights[name],
+                    hard=name not in self.soft and name not in REGULARIZERS,
+                    regularizer=name in REGULARIZERS)
 
     def x_from_vertices(self, f: np.ndarray) -> np.ndarray:
         """Scaled variable vector with e, w derived from the vertex positions."""

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -53,3 +54,11 @@ def read_handles(path: str | Path, shape: tuple[int, int], f: np.ndarray, scale:
         raise DgpcError(f"handles[{k}].offset: the net vertex it moves is not finite",
                         source=path)
     return ids, targets
+
+
+def handles_bytes(ids: np.ndarray, n: int, targets: np.ndarray) -> bytes:
+    """A handles file (what :func:`read_handles` reads) holding the vertices ``ids`` (``u*n+v``)
+    at ``targets (l, 3)`` in the net's unit; the numbers round-trip exactly."""
+    entries = [{"index": [int(i) // n, int(i) % n], "target": [float(t) for t in target]}
+               for i, target in zip(ids, np.asarray(targets, dtype=float), strict=True)]
+    return (json.dumps({"handles": entries}, indent=1) + "\n").encode()

@@ -81,6 +81,25 @@ def boundary_vertices(f: np.ndarray, reference, snap: float = BOUNDARY_SNAP) -> 
     return rim[np.linalg.norm(q - b, axis=1) <= snap * mean_edge_length(f)]
 
 
+def net_problem(f: np.ndarray, weights: dict[str, Schedule], *, reference=None,
+                handle_ids: np.ndarray | None = None, handle_targets: np.ndarray | None = None,
+                isometry_to: np.ndarray | None = None, soft: tuple[str, ...] = (),
+                boundary_ids: np.ndarray | None = None) -> Problem:
+    """The problem :func:`optimize_net` solves for the input net ``f (m, n, 3)`` (its
+    arguments of the same names): the drag terms bound to ``f``, the isometry term to
+    ``isometry_to`` (default ``f``), scaled to the mean edge length of ``f``."""
+    f = np.asarray(f, dtype=float)
+    m, n = f.shape[:2]
+    problem = Problem(NetLayout(m, n), mean_edge_length(f), weights,
+                      f0=(f if isometry_to is None else np.asarray(isometry_to, dtype=float))
+                      if "isometry" in weights else None,
+                      handle_ids=handle_ids, handle_targets=handle_targets,
+                      reference=reference, soft=soft, boundary_ids=boundary_ids, f_start=f)
+    if not problem.active():
+        raise DgpcError("no constraint term is active", source="--weight")
+    return problem
+
+
 def optimize_net(
     f: np.ndarray,
     weights: dict[str, Schedule],
@@ -129,13 +148,9 @@ def optimize_net(
     layout = NetLayout(m, n)
     if steps < 1:
         raise DgpcError("--steps must be at least 1", source="--steps")
-    problem = Problem(layout, mean_edge_length(f), weights,
-                      f0=(f if isometry_to is None else np.asarray(isometry_to, dtype=float))
-                      if "isometry" in weights else None,
-                      handle_ids=handle_ids, handle_targets=handle_targets,
-                      reference=reference, soft=soft, boundary_ids=boundary_ids, f_start=f)
-    if not problem.active():
-        raise DgpcError("no constraint term is active", source="--weight")
+    problem = net_problem(f, weights, reference=reference, handle_ids=handle_ids,
+                          handle_targets=handle_targets, isometry_to=isometry_to, soft=soft,
+                          boundary_ids=boundary_ids)
     x = problem.x_from_vertices(f)
     start = f.reshape(-1, 3)[handle_ids] if handle_ids is not None else None
     results: list[SolverResult] = []

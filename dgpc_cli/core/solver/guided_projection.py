@@ -97,6 +97,7 @@ class _Workspace:
     def __init__(self, rows, cols, n_rows, size, backend):
         self.pattern = NormalMatrix(rows, cols, n_rows, size)
         self.solver = make_solver(self.pattern, backend)
+        self.factored = False        # the solver holds a numeric factorization
 
 
 def _evaluate(terms, x):
@@ -143,6 +144,7 @@ def guided_projection(
     retract: Callable | None = None,
     callback: Callable | None = None,
     halt: Callable[[np.ndarray], str | None] | None = None,
+    reuse_factorization: bool = False,
 ) -> SolverResult:
     """Run guided projection from ``x0`` until R ≤ ``tol``, stagnation, or ``max_iter``.
 
@@ -179,6 +181,11 @@ def guided_projection(
         reached, unless it converged there; a reason ends the run there as ``halted`` (a caller
         that would reject where the run is heading saves the rest of its iterations). Points
         of the watchdog's non-monotone steps are not judged: the run may still come back.
+    reuse_factorization : bool
+        Solve with the factorization ``workspace`` holds from an earlier run instead of a new
+        one (a chord step: the normal matrix of a nearby point; the step is still accepted
+        only where the objective falls). For a live drag, where one factorization per mouse
+        event is more than the event can wait for; never for a converging run.
     """
     x = np.array(x0, dtype=float)
     history: list[dict] = []
@@ -240,12 +247,15 @@ def guided_projection(
             workspace = _Workspace(rows, cols, phi.size, x.size, backend)
         pattern = workspace.pattern
         solver = workspace.solver
-        try:
-            solver.factorize(pattern.values(vals, row_w, mu))
-        except Exception:  # noqa: BLE001 - numerically singular at a tiny ε²: damp more
-            mu *= 100.0
-            k += 1
-            continue
+        if not (reuse_factorization and workspace.factored):
+            try:
+                solver.factorize(pattern.values(vals, row_w, mu))
+            except Exception:  # noqa: BLE001 - numerically singular at a tiny ε²: damp more
+                workspace.factored = False
+                mu *= 100.0
+                k += 1
+                continue
+            workspace.factored = True
         dx = solver.solve(-pattern.gradient(vals, row_w, phi))
         if retract is not None:
             dx = retract(x + dx) - x

@@ -1,0 +1,330 @@
+"""The page of ``dgpc edit``: a viser scene of the net, its handles as gizmos, and the status.
+
+The page only shows frames and forwards the designer's gestures to ``actions`` (an object with
+``drag(u, v, target, end)``, ``pin(u, v)``, ``release(u, v)``, ``undo()``, ``redo()``,
+``save()`` and ``fabrication(on)``); the solving happens elsewhere, off the page's threads.
+A frame (see ``stages.edit_session.Frame``) carries the net in its unit, a colour field per
+vertex, the pleated and creased vertices, the handles and the status line.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import logging
+import threading
+
+import numpy as np
+import viser
+
+from dgpc_cli.edit.colours import field_colours, legend
+
+log = logging.getLogger(__name__)
+
+#: Colours of the page (RGB 0–255): the net's surface, its geodesics, flagged vertices.
+SURFACE, GEODESICS, FLAGGED, SELECTED = (205, 205, 200), (200, 40, 40), (255, 0, 170), \
+    (30, 120, 255)
+
+
+#: The initial camera's distance from the net's centre, in diagonals of its bounding box.
+CAMERA_DISTANCE = 0.9
+#: Size of a handle's gizmo, in edge lengths of the net.
+GIZMO_SIZE = 3.0
+#: Width of its lines, in pixels (wider lines are easier to grab).
+GIZMO_LINE = 6.0
+#: The push slider: a handle moved along the net's normal, ± this many edge lengths.
+PUSH_RANGE = 3.0
+#: Seconds without a slider move after which the push counts as released (the net settles).
+PUSH_SETTLE = 0.4
+
+
+def quad_faces(m: int, n: int) -> np.ndarray:
+    """Two triangles per quad of an m×n grid, row-major vertex ids ``u*n+v``."""
+    vid = np.arange(m * n).reshape(m, n)
+    a, b, c, d = vid[:-1, :-1], vid[1:, :-1], vid[1:, 1:], vid[:-1, 1:]
+    return np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3),
+                           np.stack([a, c, d], -1).reshape(-1, 3)])
+
+
+def vertex_normal(f: np.ndarray, u: int, v: int) -> np.ndarray:
+    """Unit normal of the net ``f (m, n, 3)`` at vertex ``(u, v)`` (cross product of the
+    central, at the rim one-sided, differences along u and v)."""
+    m, n = f.shape[:2]
+    du = f[min(u + 1, m - 1), v] - f[max(u - 1, 0), v]
+    dv = f[u, min(v + 1, n - 1)] - f[u, max(v - 1, 0)]
+    normal = np.cross(du, dv)
+    return normal / (np.linalg.norm(normal) or 1.0)
+
+
+def geodesic_segments(f: np.ndarray) -> np.ndarray:
+    """Segments ``(k, 2, 3)`` of the u-lines (the geodesics) of the net ``f (m, n, 3)``."""
+    return np.stack([f[:-1], f[1:]], axis=2).reshape(-1, 2, 3)
+
+
+def initial_camera(f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The initial camera (look-at point, position; up +z): the net's centre seen along its
+    normal at the middle, from ``CAMERA_DISTANCE`` diagonals of its bounding box."""
+    pts = f.reshape(-1, 3)
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    centre = 0.5 * (lo + hi)
+    m, n = f.shape[:2]
+    normal = np.cross(f[-1, n // 2] - f[0, n // 2], f[m // 2, -1] - f[m // 2, 0])
+    normal = normal / (np.linalg.norm(normal) or 1.0)
+    if float(np.dot(normal, centre - pts.mean(axis=0))) < 0:
+        normal = -normal                      # from the side the net bulges towards
+    return centre, centre + CAMERA_DISTANCE * float(np.linalg.norm(hi - lo)) * normal
+
+
+class EditPage:
+    """A viser server on ``host:port`` (port 0: a free one) showing the frames of a session."""
+
+    def __init__(self, first, actions, *, host: str, port: int, title: str,
+                 reference: tuple[np.ndarray, np.ndarray] | None = None,
+                 max_strain: float = 3e-4):
+        self.actions = actions
+        self.limit = max_strain
+        # a browser tab that closes mid-handshake is no error of the design session
+        logging.getLogger("websockets").setLevel(logging.CRITICAL)
+        banner = io.StringIO()
+        with contextlib.redirect_stdout(banner):     # viser prints its address: stdout is data
+            self.server = viser.ViserServer(host=host, port=port, label=title, verbose=False)
+        log.debug("%s", banner.getvalue())
+        self.server.gui.configure_theme(control_width="large", show_logo=False)
+        self.server.scene.set_up_direction("+z")
+        self.server.scene.configure_fog(1e9, 2e9, enabled=False)   # a far net stays vivid
+        self.shape = first.f.shape[:2]
+        m, n = self.shape
+        self._lock = threading.RLock()
+        self._gizmos: dict[tuple[int, int], object] = {}
+        self._dragging: set[tuple[int, int]] = set()
+        self.selected: tuple[int, int] | None = None
+        self._push_base: tuple[np.ndarray, np.ndarray] | None = None   # (target, normal)
+        self._push_timer: threading.Timer | None = None
+        self._resetting = False
+        f = first.f.reshape(-1, 3)
+        self.scale = float(np.median(np.linalg.norm(first.f[1:] - first.f[:-1], axis=-1)))
+        if reference is not None:
+            self.server.scene.add_mesh_simple("/reference", reference[0], reference[1],
+                                              color=(150, 170, 200), opacity=0.35,
+                                              side="double", cast_shadow=False,
+                                              receive_shadow=False)
+        self.mesh = self.server.scene.add_mesh_simple("/net", f, quad_faces(m, n),
+                                                      color=SURFACE, side="double",
+                                                      cast_shadow=False, receive_shadow=False)
+        self.mesh.on_click(self._clicked)
+        self.lines = self.server.scene.add_line_segments(
+            "/net/geodesics", geodesic_segments(first.f), colors=GEODESICS, line_width=2.0)
+        self.points = self.server.scene.add_point_cloud(
+            "/net/field", f, colors=field_colours(first.field, max_strain),
+            point_size=0.2 * self.scale, point_shape="circle")
+        self.flags = self.server.scene.add_point_cloud(
+            "/net/flags", np.zeros((1, 3)), colors=FLAGGED, point_size=0.8 * self.scale,
+            point_shape="diamond", visible=False)
+        self.marker = self.server.scene.add_icosphere(
+            "/selected", radius=0.3 * self.scale, color=SELECTED, visible=False)
+        self._gui(first)
+        self._view(first.f)
+        self.show(first)
+
+    # -- layout --------------------------------------------------------------------------
+    def _gui(self, first) -> None:
+        gui = self.server.gui
+        self.status = gui.add_markdown(_status_markdown(first))
+        self.figures = gui.add_markdown(_field_markdown(first, self.limit))
+        with gui.add_folder("Handles"):
+            self.selection = gui.add_markdown("Click a vertex of the net to add a handle.")
+            self.push = gui.add_slider("Push selected (edges)", -PUSH_RANGE, PUSH_RANGE, 0.05,
+                                       0.0, hint="Drag to move the selected handle along the "
+                                                 "net's normal; let go and the net settles.")
+            release = gui.add_button("Release selected handle")
+            pin = gui.add_button("Pin selected vertex")
+            undo = gui.add_button("Undo")
+            redo = gui.add_button("Redo")
+        with gui.add_folder("Save"):
+            save = gui.add_button("Save artifact")
+            self.saved = gui.add_markdown("")
+        with gui.add_folder("Fabrication"):
+            self.fab_on = gui.add_checkbox("Fabrication figures (when settled)", False)
+            self.fabrication = gui.add_markdown("")
+
+        release.on_click(lambda _: self.selected and self.actions.release(*self.selected))
+        pin.on_click(lambda _: self.selected and self.actions.pin(*self.selected))
+        undo.on_click(lambda _: self.actions.undo())
+        redo.on_click(lambda _: self.actions.redo())
+        save.on_click(lambda _: self._save())
+        self.fab_on.on_update(lambda _: self.actions.fabrication(self.fab_on.value))
+        self.push.on_update(lambda _: self._pushed())
+
+    def _view(self, f: np.ndarray) -> None:
+        look_at, position = initial_camera(f)
+        cam = self.server.initial_camera
+        cam.look_at = tuple(look_at)
+        cam.position = tuple(position)
+        cam.up = (0.0, 0.0, 1.0)
+
+    @property
+    def url(self) -> str:
+        return f"http://{_url_host(self.server.get_host())}:{self.server.get_port()}/"
+
+    # -- gestures ------------------------------------------------------------------------
+    def _clicked(self, event) -> None:
+        """Select the vertex nearest to the clicked ray; a vertex that is no handle becomes
+        one, held where it is."""
+        f = self._f.reshape(-1, 3)
+        o, d = np.asarray(event.ray_origin), np.asarray(event.ray_direction)
+        d = d / np.linalg.norm(d)
+        rel = f - o
+        along = rel @ d
+        off = np.linalg.norm(rel - along[:, None] * d, axis=1)
+        vid = int(np.argmin(np.where(along > 0, off, np.inf)))
+        u, v = divmod(vid, self.shape[1])
+        self.select((u, v))
+        if (u, v) not in self._gizmos:
+            self.actions.pin(u, v)
+
+    def select(self, index: tuple[int, int] | None) -> None:
+        if index != self.selected:
+            self._push_base = None
+            self._resetting = True
+            self.push.value = 0.0
+            self._resetting = False
+        self.selected = index
+        if index is None:
+            self.marker.visible = False
+            self.selection.content = "Click a vertex of the net to add a handle."
+            return
+        self.marker.position = tuple(self._f[index])
+        self.marker.visible = True
+        held = "a handle" if index in self._gizmos else "not a handle"
+        self.selection.content = f"Selected vertex **({index[0]}, {index[1]})**: {held}."
+
+    def _pushed(self) -> None:
+        """The push slider moved: drag the selected handle along the normal; the drag ends
+        ``PUSH_SETTLE`` seconds after the last move."""
+        if self._resetting or self.selected is None:
+            return
+        index = self.selected
+        if self._push_base is None:
+            self._push_base = (self._f[index].copy(), vertex_normal(self._f, *index))
+        base, normal = self._push_base
+        target = tuple(float(c) for c in base + self.push.value * self.scale * normal)
+        self.actions.drag(index[0], index[1], target, False)
+        if self._push_timer is not None:
+            self._push_timer.cancel()
+        self._push_timer = threading.Timer(
+            PUSH_SETTLE, lambda: self.actions.drag(index[0], index[1], target, True))
+        self._push_timer.daemon = True
+        self._push_timer.start()
+
+    def _save(self) -> None:
+        self.saved.content = "saving…"
+        self.actions.save()
+
+    def _gizmo_moved(self, index: tuple[int, int], handle, event) -> None:
+        phase = getattr(event, "phase", "update")
+        log.debug("gizmo %s: %s at %s", index, phase, tuple(handle.position))
+        if phase == "start":
+            self._dragging.add(index)
+            self.select(index)
+            return
+        end = phase == "end"
+        if end:
+            self._dragging.discard(index)
+        self.actions.drag(index[0], index[1], tuple(float(c) for c in handle.position), end)
+
+    # -- frames --------------------------------------------------------------------------
+    def show(self, frame) -> None:
+        """Show a frame (any thread)."""
+        with self._lock:
+            self._f = frame.f
+            pts = frame.f.reshape(-1, 3).astype(np.float32)
+            with self.server.atomic():
+                self.mesh.vertices = pts
+                self.lines.points = geodesic_segments(frame.f).astype(np.float32)
+                self.points.points = pts
+                self.points.colors = field_colours(frame.field, self.limit)
+                flagged = (frame.pleated | frame.creased).reshape(-1)
+                if flagged.any():
+                    self.flags.points = pts[flagged]
+                    self.flags.visible = True
+                else:
+                    self.flags.visible = False
+                self._sync_gizmos(frame)
+                self.status.content = _status_markdown(frame)
+                self.figures.content = _field_markdown(frame, self.limit)
+                if frame.fabrication is not None:
+                    self.fabrication.content = _fabrication_markdown(frame.fabrication)
+                elif not frame.settled:
+                    self.fabrication.content = ""
+            if self.selected is not None:
+                self.select(self.selected)
+
+    def _sync_gizmos(self, frame) -> None:
+        wanted = {(u, v): target for u, v, target in frame.handles}
+        for index in list(self._gizmos):
+            if index not in wanted:
+                self._gizmos.pop(index).remove()
+        for index, target in wanted.items():
+            gizmo = self._gizmos.get(index)
+            if gizmo is None:
+                gizmo = self.server.scene.add_transform_controls(
+                    f"/handles/h{index[0]}_{index[1]}", scale=GIZMO_SIZE * self.scale,
+                    line_width=GIZMO_LINE, disable_rotations=True, depth_test=False,
+                    position=target)
+                gizmo.on_update(lambda event, i=index, g=gizmo: self._gizmo_moved(i, g, event))
+                self._gizmos[index] = gizmo
+            elif index not in self._dragging and frame.settled:
+                gizmo.position = target
+
+    def saved_to(self, text: str) -> None:
+        self.saved.content = text
+
+    def stop(self) -> None:
+        self.server.stop()
+
+
+def _url_host(host: str) -> str:
+    return f"[{host}]" if ":" in host else host
+
+
+def _status_markdown(frame) -> str:
+    mark = "✅" if frame.state == "converged" else ("⏳" if not frame.settled else "⚠️")
+    line = f"{mark} **{frame.state.replace('_', ' ')}**: {frame.message}"
+    if frame.iterations:
+        line += f"  \n_{frame.iterations} iterations, {1000 * frame.seconds:.0f} ms_"
+    return line
+
+
+def _field_markdown(frame, limit: float) -> str:
+    values = frame.field[np.isfinite(frame.field)]
+    worst = float(values.max()) if values.size else float("nan")
+    flags = []
+    if frame.pleated.any():
+        flags.append(f"pleated at {int(frame.pleated.sum())} vertices")
+    if frame.creased.any():
+        flags.append(f"creased at {int(frame.creased.sum())} vertices")
+    text = f"Colour: {frame.field_name}, largest **{worst:.3g}** ({legend(limit)})"
+    if flags:
+        text += "  \n⚠️ " + "; ".join(flags) + " (magenta)"
+    return text
+
+
+def _fabrication_markdown(fab: dict) -> str:
+    lines = []
+    strips = fab.get("strips", {})
+    if "error" in strips:
+        lines.append(f"**Strips**: {strips['error']}")
+    else:
+        lines.append(f"**Strips**: {strips['strips']} strips in {strips['classes']} congruence "
+                     f"classes ({', '.join(map(str, strips['quantities']))}); class deviation "
+                     f"{strips['class_deviation']:.2g} of the length, strip deviation "
+                     f"{strips['strip_deviation']:.2g} of the width")
+    mold = fab.get("mold", {})
+    if "error" in mold:
+        lines.append(f"**Mold**: {mold['error']}")
+    else:
+        pieces = ", ".join(f"{p['id']} ({p['length']:.3g})" for p in mold["pieces"]) or "none"
+        lines.append(f"**Mold**: one surface of revolution, radius {mold['radius'][0]:.3g}–"
+                     f"{mold['radius'][1]:.3g}; pieces {pieces}; largest strain against it "
+                     f"**{mold['strain_max']:.3g}**")
+    return "  \n".join(lines)

@@ -1,0 +1,72 @@
+"""``dgpc edit --replay``: a recorded sequence of drag events through the solver thread of the
+page, without a page, at the events' own times; the latency of each event is logged."""
+
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+
+from dgpc_cli.io.atomic import write_files
+from dgpc_cli.io.drags import DragEvent
+from dgpc_cli.stages.edit_live import Answer, LiveSolver, Request
+from dgpc_cli.stages.edit_session import EditSession
+from dgpc_cli.stages.optimize import OptimizeOutcome
+
+#: Seconds a replay waits for the solver after its last event, at most.
+REPLAY_TIMEOUT = 3600.0
+
+
+def event_request(event: DragEvent, tag) -> Request:
+    """The solver request of a recorded event."""
+    u, v = event.index
+    if event.action == "drag":
+        return Request("drag", (u, v, event.target), end=event.end, tag=tag)
+    return Request(event.action, (u, v), end=event.end, tag=tag)
+
+
+def replay(session: EditSession, events: list[DragEvent], output: Path,
+           handles_path: Path | None = None) -> tuple[OptimizeOutcome, dict]:
+    """Settle the session's handles, then feed ``events`` (their times counted from there) to a
+    :class:`LiveSolver` on ``session`` at their recorded times, let the
+    net settle, save the artifact and the handles file (see :meth:`EditSession.save`). Returns
+    the outcome and the log: per event its latency (seconds from its arrival to the net
+    shown) or ``superseded``, the iterations run, the state shown; per settling run the
+    seconds from the drag's end to the settled net."""
+    session.settle()                 # the page, too, opens on the settled net
+    answers: list[Answer] = []
+    solver = LiveSolver(session, answers.append)
+    t0 = time.perf_counter()
+    try:
+        for k, event in enumerate(events):
+            delay = t0 + event.time - time.perf_counter()
+            if delay > 0:
+                time.sleep(delay)
+            solver.submit(event_request(event, k))
+        solver.wait_idle(REPLAY_TIMEOUT)
+    finally:
+        solver.close()
+    outcome = session.save(output, handles_path)
+    records, settles = [], []
+    for a in answers:
+        if a.refresh:
+            continue
+        if a.request.action == "settle":
+            if a.frame is not None:
+                settles.append({"seconds": a.latency, "state": a.frame.state,
+                                "iterations": a.frame.iterations})
+            continue
+        rec = {"event": a.request.tag, "action": a.request.action}
+        if a.frame is None:
+            rec["superseded"] = True
+        else:
+            rec.update(latency=a.latency, iterations=a.frame.iterations, state=a.frame.state)
+        if a.error:
+            rec["error"] = a.error
+        records.append(rec)
+    return outcome, {"events": records, "settles": settles}
+
+
+def write_log(path: Path, log: dict) -> None:
+    """The replay's latency log as JSON (timings: not part of any compared artifact)."""
+    write_files({path: (json.dumps(log, indent=1, sort_keys=True) + "\n").encode()}, force=True)
