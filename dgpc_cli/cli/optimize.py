@@ -12,7 +12,7 @@ from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
 from dgpc_cli.cli.progress import SolverProgress
 from dgpc_cli.core.solver.linear import BACKENDS
-from dgpc_cli.errors import DgpcError, NotConverged
+from dgpc_cli.errors import NotConverged
 from dgpc_cli.io.artifact import artifact_paths, load_envelope
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.handles import read_handles
