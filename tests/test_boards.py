@@ -92,9 +92,9 @@ def test_joints_of_neighbouring_strips_are_staggered(roof):
     assert flat.parameters["stagger"] == STAGGER
 
 
-def test_cut_list_records_the_joints(roof):
+def test_assembly_list_records_the_joints(roof):
     flat = read_flat(roof / "boards")
-    rows = list(csv.DictReader((roof / "boards.parts.csv").open()))
+    rows = list(csv.DictReader((roof / "boards.assembly.csv").open()))
     assert [r["id"] for r in rows] == [p["id"] for p in flat.parts]
     by_id = {r["id"]: r for r in rows}
     for j in flat.joints:

@@ -84,6 +84,8 @@ class LengthParam(click.ParamType):
             number, unit = float(value), None
         else:
             match = _LENGTH.match(str(value))
+            if match is None and _non_finite(str(value)):
+                self.fail(f"{value!r} is not a finite length.", param, ctx)
             if match is None:
                 self.fail(f"{value!r} is not a length (a number, optionally with a unit: "
                           f"{', '.join(UNIT_MM)}; e.g. 2.5m, 2500mm).", param, ctx)
@@ -99,6 +101,14 @@ class LengthParam(click.ParamType):
         if self.max is not None and number > self.max:
             self.fail(f"{value!r} must be <= {self.max:g}.", param, ctx)
         return Length(number, unit, self.plain)
+
+
+def _non_finite(text: str) -> bool:
+    """Whether ``text`` is a number Python reads as NaN or ±inf (``nan``, ``-inf``)."""
+    try:
+        return not math.isfinite(float(text))
+    except ValueError:
+        return False
 
 
 def length_help(text: str, plain: str | None = ARTIFACT_UNIT) -> str:

@@ -17,6 +17,7 @@ from shapely.geometry import LineString, Polygon
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.units import from_mm, mm_per_unit
+from dgpc_cli.nesting.template import template_drawing
 from dgpc_cli.strips.boards import Board, cumulative, split_boards
 from dgpc_cli.strips.congruence import Alignment, congruence_classes
 from dgpc_cli.strips.develop import Development, develop_strip, signed_area
@@ -24,8 +25,9 @@ from dgpc_cli.strips.trim import developed_part
 
 log = logging.getLogger(__name__)
 
-#: Default congruence tolerance: largest point distance over the strip length (SPEC §8).
-CONGRUENCE_TOL = 1e-3
+#: Default congruence tolerance (mm): the largest point distance of two congruent parts
+#: optimally aligned (SPEC §6 unfold).
+CONGRUENCE_TOL_MM = 0.5
 #: Default stagger of the joints of neighbouring strips, as a fraction of the stock length.
 STAGGER_FRACTION = 0.25
 
@@ -50,13 +52,13 @@ def _boards(geometry: list, devs: list[Development], ids: list[str], columns: li
 
 
 def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
-                  congruence_tol: float = CONGRUENCE_TOL, mirror_ok: bool = False,
+                  congruence_tol: float = CONGRUENCE_TOL_MM, mirror_ok: bool = False,
                   stock_length: float | None = None, stagger: float | None = None,
                   source: str | None = None, trims: list | None = None
                   ) -> tuple[list[dict], list[dict], list[dict]]:
     """Develop every strip ``(A, B)`` of ``geometry`` (mm), cut it into boards no longer than
     ``stock_length`` (mm; None: whole strips) with joints ``stagger`` apart (default a quarter
-    of the stock), and classify the parts.
+    of the stock), and classify the parts within ``congruence_tol`` (mm).
 
     Returns the part records, class records and joint records of the flat artifact (see
     :mod:`dgpc_cli.io.flat`), in mm. DgpcError (naming ``source``) when a developed outline
@@ -85,8 +87,9 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
     pieces = [develop_strip(*(np.asarray(X, float)[b.start:b.stop + 1]
                               for X in geometry[b.strip])) if split else devs[b.strip]
               for b in boards]
-    classes = congruence_classes([(d.A, d.B, d.length) for d in pieces], congruence_tol,
-                                 mirror_ok=mirror_ok)
+    classes = congruence_classes([(d.A, d.B) for d in pieces], congruence_tol,
+                                 [(columns[b.strip], b.number, names[i])
+                                  for i, b in enumerate(boards)], mirror_ok=mirror_ok)
     along = [0.5 * (cumulative(np.asarray(A, float)) + cumulative(np.asarray(B, float)))
              for A, B in geometry]
     parts: list[dict] = [{} for _ in pieces]
@@ -104,17 +107,64 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
                 "straightness": d.straightness, "strain": d.strain, "length": d.length,
                 "width": list(part_widths(d.A, d.B)), "area": signed_area(d.outline),
                 "alignment": al.record(rep_len)}
-        errors = [al.error for al in cls.alignments]
-        class_records.append({
-            "id": cls.id, "representative": names[cls.representative],
-            "quantity": len(cls.members), "members": [names[i] for i in cls.members],
-            "max_error": max(errors), "max_relative_error": max(errors) / rep_len})
+        class_records.append(class_record(cls.id, names[cls.representative],
+                                          [names[i] for i in cls.members],
+                                          [al.error for al in cls.alignments], rep_len))
     joints = [{"strip": ids[b.strip], "row": b.stop, "position": parts[i]["positions"][1],
                "parts": [names[i], names[i + 1]]}
               for i, b in enumerate(boards[:-1]) if boards[i + 1].strip == b.strip]
     log.info("%d parts in %d congruence classes, %d joints", len(parts), len(class_records),
              len(joints))
     return parts, class_records, joints
+
+
+def class_record(cid: str, representative: str, members: list[str], errors: list[float],
+                 rep_length: float) -> dict:
+    """A class of the flat artifact, its members' alignment errors and its representative's
+    length in mm."""
+    return {"id": cid, "representative": representative, "quantity": len(members),
+            "members": members, "max_error": max(errors),
+            "max_relative_error": max(errors) / rep_length, "max_deviation_mm": max(errors)}
+
+
+#: A part shorter than this (mm) is a slip of a unit, not a part (unfold warns).
+MIN_PART_MM = 10.0
+
+
+def scale_warnings(parts: list[dict], geometry: list, units: str, stock_length) -> list[str]:
+    """One-line warnings on an implausible scale (issue: no silent unit traps): a part
+    shorter than :data:`MIN_PART_MM`, or a ``stock_length`` (a
+    :class:`~dgpc_cli.cli.length.Length`, or None) longer than every strip, each naming the
+    likely fix. ``parts`` are the records of :func:`unfold_strips` and ``geometry`` the strips,
+    both in mm."""
+    out = []
+    shortest = min(parts, key=lambda p: p["length"])
+    if shortest["length"] < MIN_PART_MM:
+        out.append(f"part {shortest['id']} is {shortest['length']:.3g} mm long, under "
+                   f"{MIN_PART_MM:g} mm: the strips are in {units}; if the design is in metres, "
+                   "make the net with `init --units m`")
+    if stock_length is not None:
+        longest = max(0.5 * (float(cumulative(np.asarray(A))[-1]) +
+                             float(cumulative(np.asarray(B))[-1])) for A, B in geometry)
+        stock = stock_length.to_mm(units)
+        if stock > longest:
+            text = f"--stock-length {stock_length.text()}"
+            where = (f" is in the strips' unit ({units})" if stock_length.unit is None
+                     else "")
+            hint = (f": did you mean {stock_length.value:g}mm?"
+                    if stock_length.unit is None and units != "mm" else
+                    ": nothing is cut into boards")
+            out.append(f"{text}{where}, longer than every strip (the longest is "
+                       f"{longest / mm_per_unit(units):.4g} {units}){hint}")
+    return out
+
+
+def template_dxfs(parts: list[dict], classes: list[dict]) -> dict[str, bytes]:
+    """Class id -> the DXF bytes of its template (:mod:`dgpc_cli.nesting.template`): the
+    representative of every class, from the records of :func:`unfold_strips` (mm)."""
+    by_id = {p["id"]: p for p in parts}
+    return {c["id"]: template_drawing(by_id[c["representative"]], c["id"]).to_bytes(
+        f"template {c['id']}") for c in classes}
 
 
 def records_in_units(parts: list[dict], classes: list[dict], joints: list[dict], units: str
@@ -177,9 +227,8 @@ def _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_
                           "width": list(part_widths(ga, gb)),
                           "alignment": identity.record(part["length"]), "trimmed": True,
                           **part})
-            classes.append({"id": cls, "representative": piece["id"], "quantity": 1,
-                            "members": [piece["id"]], "max_error": 0.0,
-                            "max_relative_error": 0.0})
+            classes.append(class_record(cls, piece["id"], [piece["id"]], [0.0],
+                                        part["length"]))
     if not parts:
         raise DgpcError("no part lies inside the reference's outline", source=source)
     log.info("%d parts (%d trimmed to the outline) in %d congruence classes", len(parts),
@@ -194,11 +243,16 @@ def flat_metrics(parts: list[dict], classes: list[dict]) -> dict:
         "max_strain": max(p["strain"] for p in parts),
         "max_straightness": float(max(max(p["straightness"]) for p in parts)),
         "max_congruence_error": max(c["max_relative_error"] for c in classes),
+        "max_congruence_deviation_mm": max(c.get("max_deviation_mm", 0.0) for c in classes),
         "classes": {c["id"]: {"quantity": c["quantity"], "representative": c["representative"],
-                              "max_relative_error": c["max_relative_error"]} for c in classes},
+                              "members": c["members"],
+                              "max_relative_error": c["max_relative_error"],
+                              "max_deviation_mm": c.get("max_deviation_mm", 0.0)}
+                    for c in classes},
         "per_part": {p["id"]: {"strain": p["strain"], "straightness": p["straightness"],
                                "length": p["length"], "class": p["class"],
-                               "relative_error": p["alignment"]["relative_error"]}
+                               "relative_error": p["alignment"]["relative_error"],
+                               "deviation_mm": p["alignment"].get("deviation_mm", 0.0)}
                      for p in parts},
         "total_area": float(np.sum([p["area"] for p in parts])),
         "total_length": float(np.sum([p["length"] for p in parts])),

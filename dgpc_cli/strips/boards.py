@@ -10,7 +10,10 @@ v+1 as its sides A and B). No joint of a strip may come within the stagger of a 
 neighbour on that geodesic, measured by arc length from the first row. Strips are cut in
 order of their column: each strip's joints avoid those of the strip before it (whose joints
 are fixed), and every board is made as long as the stock and the stagger allow (greedy from
-the first row, which gives the fewest boards for the strip).
+the first row, which gives the fewest boards for the strip). A strip takes the joints of the
+strip two columns before it instead, where they fit its stock, keep the stagger and need no
+more boards: the strips of a template (congruent strips) then alternate between two joint
+patterns, and their boards fall into as few templates.
 """
 
 from __future__ import annotations
@@ -83,6 +86,19 @@ def split_strip(dev: Development, stock: float, forbidden: np.ndarray, stagger: 
         a = ok[0]
 
 
+def keeps(dev: Development, joints: list[int], stock: float, forbidden: np.ndarray,
+          stagger: float, positions: np.ndarray) -> bool:
+    """Whether the joint rows ``joints`` of the developed strip ``dev`` give boards within
+    ``stock`` whose joints keep ``stagger`` from ``forbidden`` (as in :func:`split_strip`)."""
+    cuts = [0, *joints, dev.A.shape[0] - 1]
+    if any(b <= a for a, b in zip(cuts[:-1], cuts[1:], strict=True)):
+        return False
+    if any(board_extent(dev, a, b) > stock for a, b in zip(cuts[:-1], cuts[1:], strict=True)):
+        return False
+    return forbidden.size == 0 or not joints or bool(
+        np.min(np.abs(positions[joints][:, None] - forbidden[None, :])) >= stagger)
+
+
 def split_boards(devs: list[Development], geometry: list, columns: list[int], names: list[str],
                  stock: float, stagger: float) -> list[list[Board]]:
     """Boards of every strip: ``devs[i]`` the development of the strip ``geometry[i] = (A, B)``
@@ -101,6 +117,10 @@ def split_boards(devs: list[Development], geometry: list, columns: list[int], na
         forbidden = (along_b[left][joints[left]] if left is not None and left in joints
                      else np.zeros(0))
         joints[i] = split_strip(devs[i], stock, forbidden, stagger, along_a[i], names[i])
+        before = by_column.get(int(columns[i]) - 2)
+        if (before is not None and before in joints and len(joints[before]) <= len(joints[i])
+                and keeps(devs[i], joints[before], stock, forbidden, stagger, along_a[i])):
+            joints[i] = list(joints[before])
     for i in range(len(devs)):
         cuts = [0, *joints[i], devs[i].A.shape[0] - 1]
         out.append([Board(i, k + 1, a, b)
