@@ -22,6 +22,7 @@ from dgpc_cli.strips.boards import Board, cumulative, split_boards
 from dgpc_cli.strips.congruence import Alignment, congruence_classes
 from dgpc_cli.strips.develop import Development, develop_strip, signed_area
 from dgpc_cli.strips.trim import developed_part
+from dgpc_cli.strips.trimmed_boards import board_ring, split_trimmed
 
 log = logging.getLogger(__name__)
 
@@ -39,6 +40,17 @@ def part_widths(A: np.ndarray, B: np.ndarray) -> tuple[float, float]:
     d = np.concatenate([shapely.distance(shapely.points(A), b),
                         shapely.distance(shapely.points(B), a)])
     return float(d.min()), float(d.max())
+
+
+def board_record(d: Development, name: str, column: int, number: int, rows: list[int],
+                 positions: list[float]) -> dict:
+    """The part record (without class and alignment) of the developed strip or board ``d``."""
+    return {"id": name, "strip": int(column), "board": int(number),
+            "rows": [int(r) for r in rows], "positions": [float(x) for x in positions],
+            "outline": d.outline, "score": d.rulings, "label": d.label_point,
+            "geodesics": [d.A, d.B], "straightness": d.straightness, "strain": d.strain,
+            "length": d.length, "width": list(part_widths(d.A, d.B)),
+            "area": signed_area(d.outline)}
 
 
 def _boards(geometry: list, devs: list[Development], ids: list[str], columns: list[int],
@@ -71,9 +83,8 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
     devs = [develop_strip(A, B) for A, B in geometry]
     if trims is not None and any(t is not None for t in trims):
         if stock_length is not None:
-            raise DgpcError("strips trimmed to the reference's outline (planarize-strips "
-                            "--trim) are not cut into boards: unfold them without "
-                            "--stock-length", source="--stock-length")
+            return trimmed_boards(geometry, devs, ids, columns, trims, congruence_tol,
+                                  mirror_ok, stock_length, stagger, source)
         return _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_ok,
                                source)
     folded = [ids[i] for i, d in enumerate(devs) if not Polygon(d.outline).is_valid]
@@ -98,15 +109,10 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
         rep_len = pieces[cls.representative].length
         for i, al in zip(cls.members, cls.alignments, strict=True):
             d, b = pieces[i], boards[i]
-            parts[i] = {
-                "id": names[i], "strip": int(columns[b.strip]), "board": b.number,
-                "rows": [b.start, b.stop],
-                "positions": [float(along[b.strip][b.start]), float(along[b.strip][b.stop])],
-                "class": cls.id, "outline": d.outline, "score": d.rulings,
-                "label": d.label_point, "geodesics": [d.A, d.B],
-                "straightness": d.straightness, "strain": d.strain, "length": d.length,
-                "width": list(part_widths(d.A, d.B)), "area": signed_area(d.outline),
-                "alignment": al.record(rep_len)}
+            parts[i] = {**board_record(d, names[i], columns[b.strip], b.number,
+                                       [b.start, b.stop],
+                                       [along[b.strip][b.start], along[b.strip][b.stop]]),
+                        "class": cls.id, "alignment": al.record(rep_len)}
         class_records.append(class_record(cls.id, names[cls.representative],
                                           [names[i] for i in cls.members],
                                           [al.error for al in cls.alignments], rep_len))
@@ -257,3 +263,80 @@ def flat_metrics(parts: list[dict], classes: list[dict]) -> dict:
         "total_area": float(np.sum([p["area"] for p in parts])),
         "total_length": float(np.sum([p["length"] for p in parts])),
     }
+
+
+def trimmed_boards(geometry, devs, ids, columns, trims, congruence_tol, mirror_ok,
+                   stock_length, stagger, source):
+    """:func:`unfold_strips` with a stock length for strips clipped to the reference's outline
+    (mm): every trimmed part (a strip without a trim record: its whole length) cut at rulings
+    into boards (:mod:`dgpc_cli.strips.trimmed_boards`), ids ``S-v07.1``, ``S-v07b.2``, the
+    joints of neighbouring strips staggered. A board between two rulings that the outline does
+    not touch is developed and classified as a board of a whole strip; a board with an end cut
+    along the outline is its own class, as a trimmed part is."""
+    stagger = STAGGER_FRACTION * stock_length if stagger is None else stagger
+    along_a = [cumulative(np.asarray(A, float)) for A, _ in geometry]
+    along_b = [cumulative(np.asarray(B, float)) for _, B in geometry]
+    by_column = {int(v): i for i, v in enumerate(columns)}
+    joints: dict[int, list[int]] = {}
+    boards = []                       # (strip, part id, number, a, b, ring of the part)
+    for i in sorted(range(len(geometry)), key=lambda i: columns[i]):
+        m = len(geometry[i][0])
+        pieces = (trims[i]["parts"] if trims[i] is not None else
+                  [{"id": ids[i], "outline": [[0, 0], [m - 1, 0], [m - 1, 1], [0, 1]]}])
+        left = by_column.get(int(columns[i]) - 1)
+        forbidden = (along_b[left][joints[left]] if left in joints else np.zeros(0))
+        joints[i] = []
+        for piece in pieces:
+            ring = np.asarray(piece["outline"], float)
+            cuts = split_trimmed(devs[i], ring, stock_length, forbidden, stagger, along_a[i],
+                                 piece["id"])
+            joints[i] += cuts
+            ends = [float(ring[:, 0].min()), *cuts, float(ring[:, 0].max())]
+            boards += [(i, piece["id"], k + 1, a, b, ring)
+                       for k, (a, b) in enumerate(zip(ends[:-1], ends[1:], strict=True))]
+    parts, whole, cut = [], [], []
+    for i, pid, k, a, b, ring in boards:
+        A, B = (np.asarray(X, float) for X in geometry[i])
+        along = 0.5 * (along_a[i] + along_b[i])
+        r0, r1 = int(np.floor(a)), int(np.ceil(b))
+        board = board_ring(Polygon(ring), a, b)
+        sub = develop_strip(A[r0:r1 + 1], B[r0:r1 + 1])
+        record = board_record(sub, f"{pid}.{k}", columns[i], k, [r0, r1],
+                              np.interp([a, b], np.arange(len(along)), along))
+        if a == r0 and b == r1 and abs(Polygon(board).area - (b - a)) <= 1e-9 * (b - a):
+            whole.append((len(parts), sub))
+        else:
+            shifted = board - [r0, 0.0]
+            part = developed_part(sub.A, sub.B, shifted)
+            if not Polygon(part["outline"]).is_valid:
+                raise DgpcError(f"the developed outline of {pid}.{k} crosses itself",
+                                source=source)
+            ga, gb = part["geodesics"]
+            record.update(part, width=list(part_widths(ga, gb)), trimmed=True)
+            cut.append(len(parts))
+        parts.append(record)
+    classes = congruence_classes([(d.A, d.B) for _, d in whole], congruence_tol,
+                                 [(parts[j]["strip"], parts[j]["id"]) for j, _ in whole],
+                                 mirror_ok=mirror_ok) if whole else []
+    class_records = []
+    for cls in classes:
+        rep = parts[whole[cls.representative][0]]
+        for n, al in zip(cls.members, cls.alignments, strict=True):
+            parts[whole[n][0]].update({"class": cls.id, "alignment": al.record(rep["length"])})
+        class_records.append(class_record(cls.id, rep["id"],
+                                          [parts[whole[n][0]]["id"] for n in cls.members],
+                                          [al.error for al in cls.alignments], rep["length"]))
+    identity = Alignment(R=np.eye(2), t=np.zeros(2), relabel="identity", mirrored=False,
+                         error=0.0)
+    for j in cut:
+        cid = f"C{len(class_records) + 1:02d}"
+        parts[j].update({"class": cid, "alignment": identity.record(parts[j]["length"])})
+        class_records.append(class_record(cid, parts[j]["id"], [parts[j]["id"]], [0.0],
+                                          parts[j]["length"]))
+    joint_records = [{"strip": ids[i], "row": int(b), "position": parts[n]["positions"][1],
+                      "parts": [parts[n]["id"], parts[n + 1]["id"]]}
+                     for n, (i, pid, k, a, b, _) in enumerate(boards[:-1])
+                     if boards[n + 1][1] == pid]
+    log.info("%d boards (%d with an end cut along the outline) in %d congruence classes, "
+             "%d joints", len(parts), len(cut), len(class_records), len(joint_records))
+    return parts, class_records, joint_records
