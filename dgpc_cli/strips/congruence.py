@@ -120,6 +120,11 @@ def deviation_matrix(parts: list[tuple[np.ndarray, np.ndarray]], tol: float, *,
     return D
 
 
+#: Representatives whose largest distances to the others differ by less than this fraction of
+#: the tolerance are a tie.
+TIE = 1e-6
+
+
 @dataclass
 class CongruenceClass:
     """Members (part indices, in the canonical order) of one class, its representative and
@@ -160,7 +165,8 @@ def congruence_classes(parts: list[tuple[np.ndarray, np.ndarray]], tol: float, k
     (distinct, sortable: e.g. the part ids), every two compared (:func:`deviation_matrix`),
     and grouped by complete linkage (:func:`complete_linkage`): every two members of a class
     are within ``tol``. A class's representative is its member farthest from none (the least
-    largest distance to the others; the first in key order on a tie); ``C01``, ``C02``, ...
+    largest distance to the others; the first in key order on a tie, within :data:`TIE` of
+    the tolerance, so that copies equal to round-off keep their first); ``C01``, ``C02``, ...
     number the classes in the key order of their first members.
     """
     order = sorted(range(len(parts)), key=lambda i: keys[i])
@@ -168,7 +174,8 @@ def congruence_classes(parts: list[tuple[np.ndarray, np.ndarray]], tol: float, k
     D = deviation_matrix(canon, tol, mirror_ok=mirror_ok)
     out = []
     for k, group in enumerate(complete_linkage(D, tol)):
-        rep = group[int(np.argmin(D[np.ix_(group, group)].max(axis=1)))]
+        farthest = D[np.ix_(group, group)].max(axis=1)
+        rep = group[int(np.argmax(farthest <= farthest.min() + TIE * tol))]
         alignments = [Alignment(R=np.eye(2), t=np.zeros(2), relabel="identity",
                                 mirrored=False, error=0.0) if i == rep
                       else align(*canon[i], *canon[rep], mirror_ok=mirror_ok) for i in group]
