@@ -10,10 +10,14 @@ import pytest
 from cli_helpers import dgpc
 from shapely.geometry import Polygon
 
+from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.flat import read_flat
 from dgpc_cli.io.net import NetArtifact, read_net, write_net
 from dgpc_cli.io.sheets import read_sheets
-from dgpc_cli.io.strips import read_strips
+from dgpc_cli.io.strips import read_strips, strips_files
+from dgpc_cli.strips.boards import board_extent, split_boards
+from dgpc_cli.strips.develop import develop_strip
+from dgpc_cli.strips.trim import strip_points
 from dgpc_cli.surfaces.minding import minding_bend
 
 STOCK, STAGGER = 6.0, 1.5            # m: the default stagger is a quarter of the stock
@@ -92,9 +96,9 @@ def test_joints_of_neighbouring_strips_are_staggered(roof):
     assert flat.parameters["stagger"] == STAGGER
 
 
-def test_cut_list_records_the_joints(roof):
+def test_assembly_list_records_the_joints(roof):
     flat = read_flat(roof / "boards")
-    rows = list(csv.DictReader((roof / "boards.parts.csv").open()))
+    rows = list(csv.DictReader((roof / "boards.assembly.csv").open()))
     assert [r["id"] for r in rows] == [p["id"] for p in flat.parts]
     by_id = {r["id"]: r for r in rows}
     for j in flat.joints:
@@ -149,3 +153,107 @@ def test_bad_stock_writes_nothing(roof, tmp_path, args, code, names):
     assert names in err[-1] and err[-1].startswith("Error")
     assert len([line for line in err if line.startswith("Error")]) == 1
     assert list(tmp_path.iterdir()) == []
+
+
+def _slightly_different_strips(n=8, m=61, width=0.3):
+    """Flat strips of 60 quads about 0.5 m long (waving by 5 %), each 0.3 % shorter than the
+    one before: near-templates whose greedy joints drift from strip to strip."""
+    geometry = []
+    for v in range(n):
+        ds = 0.5 * (1 - 0.003 * v) * (1 + 0.05 * np.sin(0.7 * np.arange(m - 1)))
+        A = np.column_stack([np.concatenate([[0.0], np.cumsum(ds)]), np.zeros(m), np.zeros(m)])
+        geometry.append((A, A + [0.0, width, 0.0]))
+    return geometry
+
+
+def test_strips_alternate_between_two_joint_patterns_where_they_can():
+    """A strip takes the joints of the strip two columns before it where they fit: two joint
+    patterns, alternating, where cutting each strip greedily gave six."""
+    geometry = _slightly_different_strips()
+    devs = [develop_strip(A, B) for A, B in geometry]
+    columns = list(range(len(geometry)))
+    boards = split_boards(devs, geometry, columns, [f"S-v{v:02d}" for v in columns], 5.0, 1.2)
+    patterns = [tuple(b.stop for b in strip[:-1]) for strip in boards]
+    assert len(set(patterns)) == 2
+    assert all(patterns[v] == patterns[v - 2] for v in range(2, len(patterns)))
+    assert patterns[0] != patterns[1]
+    for strip, dev in zip(boards, devs, strict=True):
+        assert all(board_extent(dev, b.start, b.stop) <= 5.0 for b in strip)
+    along = [_along(A) for A, _ in geometry]
+    for v in range(len(geometry) - 1):                     # staggered by 1.2 m
+        a = along[v][list(patterns[v])]
+        b = along[v + 1][list(patterns[v + 1])]
+        assert np.abs(a[:, None] - b[None, :]).min() >= 1.2
+
+
+def test_boards_of_a_template_are_few_templates(roof):
+    """Six congruent strips cut alternately: the boards are the boards of two patterns, each a
+    template with three copies, and the cut list says so."""
+    boards = read_flat(roof / "boards")
+    patterns = defaultdict(list)
+    for p in boards.parts:
+        patterns[p["strip"]].append(p["rows"][1])
+    by_column = [tuple(patterns[v]) for v in sorted(patterns)]
+    assert all(by_column[v] == by_column[v - 2] for v in range(2, len(by_column)))
+    assert len(boards.classes) == len(by_column[0]) + len(by_column[1])
+    rows = list(csv.DictReader((roof / "boards.parts.csv").open()))
+    assert [int(r["quantity"]) for r in rows] == [len(by_column) // 2] * len(rows)
+    assert sum(int(r["quantity"]) for r in rows) == len(boards.parts)
+
+
+def _trimmed(roof):
+    """The roof's strips with trim records (as `planarize-strips --trim` writes them): slanted
+    end cuts, and strip 2 cut in two by a hole; rings sampled every 1/8 quad, as the trim's."""
+    strips = read_strips(roof / "strips")
+    m = len(strips.geometry[0][0])
+    for v, (rec, (A, B)) in enumerate(zip(strips.records, strips.geometry, strict=True)):
+        if v == 2:
+            rings = {rec["id"] + "a": [[0.3, 0], [25.5, 0], [24.2, 1], [0, 1]],
+                     rec["id"] + "b": [[30.6, 0], [m - 1, 0], [m - 1.7, 1], [31.2, 1]]}
+        else:
+            rings = {rec["id"]: [[0.2 + 0.1 * v, 0], [m - 1, 0], [m - 1 - 0.3 * v, 1], [0, 1]]}
+        parts = []
+        for pid, ring in rings.items():
+            ring = np.asarray(Polygon(ring).segmentize(0.125).exterior.coords)[:-1]
+            parts.append({"id": pid, "outline": ring, "outline_3d": strip_points(A, B, ring),
+                          "rows": [int(np.floor(ring[:, 0].min())),
+                                   int(np.ceil(ring[:, 0].max()))]})
+        rec["trim"] = {"parts": parts, "dropped": []}
+    write_files(strips_files(roof / "trimmed", strips), force=True)
+    return roof / "trimmed"
+
+
+def test_trimmed_strips_are_cut_into_boards_at_rulings(roof, tmp_path):
+    """Issue 27 item 5: trimmed parts into boards no longer than the stock, end cuts along the
+    outline on the end boards, joints staggered, the same area as the trimmed parts."""
+    stem = _trimmed(roof)
+    dgpc("unfold", stem, "-o", tmp_path / "parts")
+    dgpc("unfold", stem, "--stock-length", "6m", "-o", tmp_path / "boards")
+    parts = {p["id"]: p for p in read_flat(tmp_path / "parts").parts}
+    flat = read_flat(tmp_path / "boards")
+    by_part = defaultdict(list)
+    for p in flat.parts:
+        by_part[p["id"].split(".")[0]].append(p)
+        assert np.ptp(np.asarray(p["outline"])[:, 0]) <= STOCK + 1e-9, p["id"]
+        assert Polygon(p["outline"]).is_valid
+    assert sorted(by_part) == sorted(parts) and "S-v02b" in by_part
+    for pid, boards in by_part.items():
+        assert len(boards) >= 3                          # 13 m and more
+        area = sum(b["area"] for b in boards)
+        assert area == pytest.approx(parts[pid]["area"], rel=1e-6), pid
+        # the outline's end cuts stay on the end boards; the boards between are whole
+        assert boards[0].get("trimmed") and not any(b.get("trimmed") for b in boards[1:-1])
+        assert [b["board"] for b in boards] == list(range(1, len(boards) + 1))
+    for c in flat.classes:                                # whole boards share templates
+        assert c["max_deviation_mm"] <= 0.5
+    assert any(c["quantity"] > 1 for c in flat.classes)
+    strips = read_strips(stem)
+    geometry = {r["v"]: (A, B) for r, (A, B) in zip(strips.records, strips.geometry,
+                                                     strict=True)}
+    rows = defaultdict(list)
+    for j in flat.joints:
+        rows[int(j["strip"][3:])].append(j["row"])
+    for v in sorted(geometry)[:-1]:
+        on_b = _along(geometry[v][1])[rows[v]]
+        on_a = _along(geometry[v + 1][0])[rows[v + 1]]
+        assert np.abs(on_b[:, None] - on_a[None, :]).min() >= STAGGER - 1e-9

@@ -78,8 +78,9 @@ def test_flat_reading_checks_classes_against_parts(artifacts, tmp_path):
     doc = _doc(artifacts, "f")
     doc["data"]["classes"][0]["quantity"] += 1
     (tmp_path / "f.json").write_text(json.dumps(doc))
-    for name in ("f.obj", "f.parts.csv"):
-        (tmp_path / name).write_bytes((artifacts / name).read_bytes())
+    for path in artifacts.glob("f.*"):
+        if path.name != "f.json":
+            (tmp_path / path.name).write_bytes(path.read_bytes())
     with pytest.raises(DgpcError, match="quantity"):
         read_flat(tmp_path / "f")
 

@@ -129,7 +129,11 @@ def test_strip_range_and_determinism(tmp_path):
     for doc in (ja, jb):
         doc["inputs"] = {}
         doc["data"].pop("obj")                      # the OBJ's file name
-        doc["data"]["files"]["parts_csv"].pop("path")   # the cut list's
+        for record in doc["data"]["files"].values():   # the cut lists' and DXFs' names
+            record.pop("path")
+        doc["data"]["files"]["parts_csv"].pop("sha256")   # the cut list names the DXFs
+    assert (tmp_path / "af.parts.csv").read_text().replace("af.", "bf.") == \
+        (tmp_path / "bf.parts.csv").read_text()
     assert ja == jb
     assert [p["id"] for p in ja["data"]["parts"]] == ["S-v02", "S-v03", "S-v04"]
     obj = (tmp_path / "a.obj").read_text().splitlines()
@@ -205,7 +209,8 @@ def test_mirror_images_share_a_class_only_with_mirror_ok(tmp_path):
     counts = {}
     for flag in ((), ("--mirror-ok",)):
         stem = tmp_path / f"f{len(flag)}"
-        dgpc("unfold", tmp_path / "s", *flag, "-o", stem)
+        # parts some 3 units long: a tolerance of 1e-3 of that, in the net's unit
+        dgpc("unfold", tmp_path / "s", *flag, "--congruence-tol", "0.003", "-o", stem)
         flat = read_flat(stem)
         counts[flag] = sorted(c["quantity"] for c in flat.classes)
         for c in flat.classes:

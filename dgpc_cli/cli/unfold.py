@@ -7,7 +7,7 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.cli.finite_float import FiniteFloat
+from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
@@ -17,30 +17,34 @@ from dgpc_cli.io.strips import read_strips
 from dgpc_cli.io.units import mm_per_unit, to_mm
 from dgpc_cli.stages.soundness import require_sound_strips
 from dgpc_cli.stages.unfold import (
-    CONGRUENCE_TOL,
+    CONGRUENCE_TOL_MM,
     STAGGER_FRACTION,
     flat_metrics,
     records_in_units,
+    scale_warnings,
+    template_dxfs,
     unfold_strips,
 )
 
 log = logging.getLogger(__name__)
 
 
-@click.command(short_help="Develop strips into the plane; group them into congruence classes.")
+@click.command(short_help="Develop strips into the plane; group them into cutting templates.")
 @click.argument("stem", type=click.Path(path_type=Path))
 @click.option("--mirror-ok", is_flag=True,
               help="Count mirror images as congruent (parts that may be flipped over).")
-@click.option("--congruence-tol", type=FiniteFloat(min=0, min_open=True),
-              default=CONGRUENCE_TOL, show_default=True,
-              help="Strips are congruent when, optimally aligned, no point of their outlines "
-                   "is farther apart than this fraction of the strip length.")
-@click.option("--stock-length", type=FiniteFloat(min=0, min_open=True), metavar="L",
-              help="Cut every strip longer than L (in the strips' unit) at rulings into boards "
-                   "no longer than L: part ids S-v07.1, S-v07.2, ...")
-@click.option("--stagger", type=FiniteFloat(min=0), metavar="D",
-              help="With --stock-length: no joint of a strip within D (along the geodesic) of "
-                   f"a joint of the strips beside it [default: {STAGGER_FRACTION:g} L].")
+@click.option("--congruence-tol", type=LengthParam(min=0, min_open=True),
+              default=f"{CONGRUENCE_TOL_MM:g}mm", show_default=True,
+              help=length_help("Parts are copies of one template (a congruence class) when, "
+                               "optimally aligned, no point of their outlines is farther "
+                               "apart than this (> 0)."))
+@click.option("--stock-length", type=LengthParam(min=0, min_open=True),
+              help=length_help("Cut every strip longer than this at rulings into boards no "
+                               "longer than it (> 0): part ids S-v07.1, S-v07.2, ..."))
+@click.option("--stagger", type=LengthParam(min=0),
+              help=length_help("With --stock-length: no joint of a strip within this (>= 0, "
+                               "along the geodesic) of a joint of the strips beside it "
+                               f"[default: {STAGGER_FRACTION:g} × the stock length]."))
 @output_opt
 @force_opt
 @format_opt
@@ -49,33 +53,42 @@ def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, output, force
 
     Records per part the closed outline, the rulings (score lines), a label point, the edge
     strain and the straightness of the developed geodesics; groups the parts into congruence
-    classes with a representative and each member's alignment error. With --stock-length,
-    strips are cut at rulings into boards of stock length, the joints of neighbouring strips
-    staggered; congruence classes are then per board. Writes the flat artifact -o STEM2 and its
-    cut list STEM2.parts.csv (mm).
+    classes, the cutting templates (every two copies of a template within --congruence-tol,
+    whatever the order of the parts), with each copy's deviation from its template in mm. With
+    --stock-length, strips are cut at rulings into boards of stock length, the joints of
+    neighbouring strips staggered (alternating between two patterns where the strips allow);
+    congruence classes are then per board. Writes the flat artifact -o STEM2, its cut list
+    STEM2.parts.csv (one line per template: quantity and the copies' ids, mm), STEM2.assembly.csv
+    (one line per part: where it goes) and per template STEM2.C01.dxf, ... (the part alone,
+    mm, layers as on the cut sheets).
     """
     if stagger is not None and stock_length is None:
         raise click.UsageError("--stagger goes with --stock-length")
     json_path, _ = artifact_paths(stem)
-    check_writable(output, force, csv_path(output))
+    check_writable(output, force, csv_path(output), csv_path(output, "assembly"))
     strips = read_strips(stem)
     require_sound_strips(strips.geometry, [r["id"] for r in strips.records], json_path)
-    mm = mm_per_unit(strips.units)       # computed in mm (dgpc_cli.io.units)
+    units = strips.units                 # computed in mm (dgpc_cli.io.units)
+    stock_mm = None if stock_length is None else stock_length.to_mm(units)
+    stagger_mm = (None if stock_length is None else stagger.to_mm(units) if stagger is not None
+                  else STAGGER_FRACTION * stock_mm)
+    geometry = [(to_mm(A, units), to_mm(B, units)) for A, B in strips.geometry]
     parts, classes, joints = unfold_strips(
-        [(to_mm(A, strips.units), to_mm(B, strips.units)) for A, B in strips.geometry],
-        [r["id"] for r in strips.records], [r["v"] for r in strips.records],
-        congruence_tol=congruence_tol, mirror_ok=mirror_ok,
-        stock_length=None if stock_length is None else stock_length * mm,
-        stagger=None if stagger is None else stagger * mm, source=json_path,
+        geometry, [r["id"] for r in strips.records], [r["v"] for r in strips.records],
+        congruence_tol=congruence_tol.to_mm(units), mirror_ok=mirror_ok,
+        stock_length=stock_mm, stagger=stagger_mm, source=json_path,
         trims=[r.get("trim") for r in strips.records])
-    parts, classes, joints = records_in_units(parts, classes, joints, strips.units)
+    for line in scale_warnings(parts, geometry, units, stock_length):
+        log.warning("%s: %s", json_path, line)
+    templates = template_dxfs(parts, classes)
+    parts, classes, joints = records_in_units(parts, classes, joints, units)
     out_json, _ = artifact_paths(output)
     art = FlatArtifact(
-        parts=parts, classes=classes, units=strips.units, joints=joints,
-        parameters={"mirror_ok": mirror_ok, "congruence_tol": congruence_tol,
-                    "stock_length": stock_length,
-                    "stagger": (stagger if stagger is not None or stock_length is None
-                                else STAGGER_FRACTION * stock_length)},
+        parts=parts, classes=classes, units=units, joints=joints, templates=templates,
+        parameters={"mirror_ok": mirror_ok, "congruence_tol": congruence_tol.text(),
+                    "congruence_tol_mm": congruence_tol.to_mm(units),
+                    "stock_length": None if stock_mm is None else stock_mm / mm_per_unit(units),
+                    "stagger": None if stagger_mm is None else stagger_mm / mm_per_unit(units)},
         inputs={"strips": file_input(json_path, out_json.resolve().parent)},
         metrics=flat_metrics(parts, classes), status={"n_classes": len(classes)})
     write_files(with_3dm(flat_files(output, art), output, fmt), force=force)

@@ -16,12 +16,20 @@ the artifact's unit ``data.units`` (the net's):
 * ``alignment``: the rigid motion ``x ↦ matrix·x + translation`` onto its class representative
   (with the boundary pairing used and whether it is a reflection) and its error.
 
-``data.classes`` lists the congruence classes: ``id``, ``representative`` (a part id),
-``quantity``, ``members`` (part ids) and the largest member error. ``data.joints`` lists where
-boards meet: ``strip``, net ``row``, ``position`` (arc length along the strip) and the two
-``parts``. The OBJ holds the same parts (z = 0) as one object each, for viewers;
-``STEM.parts.csv`` (``data.files.parts_csv``) is the cut list, one line per part in mm
-(:data:`PART_COLUMNS`).
+``data.classes`` lists the congruence classes (the cutting templates): ``id``,
+``representative`` (a part id: the template), ``quantity``, ``members`` (part ids: its copies)
+and the largest member error (``max_error`` in the artifact's unit, ``max_deviation_mm`` in
+mm; each part's own in its ``alignment.deviation_mm``). ``data.joints`` lists where boards
+meet: ``strip``, net ``row``, ``position`` (arc length along the strip) and the two ``parts``.
+The OBJ holds the same parts (z = 0) as one object each, for viewers. Beside it, all listed in
+``data.files``:
+
+* ``STEM.parts.csv`` (``parts_csv``): the cut list, one line per template (class) with its
+  quantity and its copies' ids, in mm (:data:`CLASS_COLUMNS`);
+* ``STEM.assembly.csv`` (``assembly_csv``): one line per part, where it goes (strip, board,
+  rows, arc-length positions: the joints) and its class, in mm (:data:`ASSEMBLY_COLUMNS`);
+* ``STEM.C01.dxf``, ... (``template_C01_dxf``, ...): each template alone, in mm, on the cut
+  sheets' layers, for shops that nest the parts themselves.
 """
 
 from __future__ import annotations
@@ -55,6 +63,15 @@ PART_GAP = 0.25
 #: placement): lengths in mm, the area in mm².
 PART_COLUMNS = ("id", "class", "strip", "board", "row_start", "row_stop", "start_mm",
                 "stop_mm", "length_mm", "width_min_mm", "width_max_mm", "area_mm2")
+
+
+#: Columns of the cut list FLAT.parts.csv: one line per template (congruence class), its
+#: copies' ids separated by spaces, the representative's sizes and the class's largest
+#: deviation (mm), its DXF file.
+CLASS_COLUMNS = ("class", "quantity", "parts", "representative", "length_mm", "width_min_mm",
+                 "width_max_mm", "area_mm2", "max_deviation_mm", "dxf")
+#: Columns of FLAT.assembly.csv: a part's columns and its deviation from its template (mm).
+ASSEMBLY_COLUMNS = (*PART_COLUMNS, "deviation_mm")
 
 
 def side_by_side(outlines: list[np.ndarray]) -> list[np.ndarray]:
@@ -91,10 +108,36 @@ def csv_bytes(columns: tuple, rows: list[dict]) -> bytes:
     return out.getvalue().encode("utf-8")
 
 
-def parts_csv(parts: list[dict], units: str) -> bytes:
-    """FLAT.parts.csv: the cut list, one line per part (in part order), mm."""
+def parts_csv(parts: list[dict], classes: list[dict], units: str, dxf_names: dict[str, str]
+              ) -> bytes:
+    """FLAT.parts.csv: the cut list, one line per class (in class order), mm; ``dxf_names``
+    the file name of each class's template DXF."""
     mm = mm_per_unit(units)
-    return csv_bytes(PART_COLUMNS, [part_row(p, mm) for p in parts])
+    by_id = {p["id"]: p for p in parts}
+    rows = []
+    for c in classes:
+        rep = part_row(by_id[c["representative"]], mm)
+        rows.append({"class": c["id"], "quantity": c["quantity"], "parts": " ".join(c["members"]),
+                     "representative": c["representative"],
+                     **{k: rep[k] for k in CLASS_COLUMNS[4:8]},
+                     "max_deviation_mm": f"{class_deviation_mm(c, mm):.3f}",
+                     "dxf": dxf_names.get(c["id"], "")})
+    return csv_bytes(CLASS_COLUMNS, rows)
+
+
+def class_deviation_mm(cls: dict, mm: float) -> float:
+    """A class's largest member deviation in mm (``mm`` mm per unit: for records without
+    ``max_deviation_mm``)."""
+    return float(cls.get("max_deviation_mm", mm * cls["max_error"]))
+
+
+def assembly_csv(parts: list[dict], units: str) -> bytes:
+    """FLAT.assembly.csv: one line per part (in part order), mm."""
+    mm = mm_per_unit(units)
+    return csv_bytes(ASSEMBLY_COLUMNS, [
+        {**part_row(p, mm),
+         "deviation_mm": f"{p['alignment'].get('deviation_mm', mm * p['alignment']['error']):.3f}"}
+        for p in parts])
 
 
 @dataclass
@@ -105,6 +148,8 @@ class FlatArtifact:
     parts: list
     classes: list
     units: str = DEFAULT_UNITS
+    #: Class id -> the bytes of its template DXF (written beside the artifact).
+    templates: dict = field(default_factory=dict)
     joints: list = field(default_factory=list)
     parameters: dict = field(default_factory=dict)
     inputs: dict = field(default_factory=dict)
@@ -126,24 +171,36 @@ def _obj_bytes(parts: list) -> bytes:
                                       if p.get("trimmed")})
 
 
-def csv_path(stem: str | Path) -> Path:
-    """``STEM.parts.csv``."""
+def csv_path(stem: str | Path, name: str = "parts") -> Path:
+    """``STEM.parts.csv`` (or ``STEM.NAME.csv``)."""
     json_path, _ = artifact_paths(stem)
-    return json_path.with_suffix(".parts.csv")
+    return json_path.with_suffix(f".{name}.csv")
+
+
+def template_path(stem: str | Path, class_id: str) -> Path:
+    """``STEM.C01.dxf``: the template DXF of class ``class_id``."""
+    json_path, _ = artifact_paths(stem)
+    return json_path.with_suffix(f".{class_id}.dxf")
 
 
 def flat_files(stem: str | Path, art: FlatArtifact) -> dict[Path, bytes]:
-    """The bytes of ``STEM.json``, ``STEM.obj`` and ``STEM.parts.csv`` (nothing written),
-    schema-checked."""
+    """The bytes of ``STEM.json``, ``STEM.obj``, the cut list ``STEM.parts.csv``,
+    ``STEM.assembly.csv`` and the template DXFs (nothing written), schema-checked."""
     json_path, _ = artifact_paths(stem)
-    table = parts_csv(art.parts, art.units)
+    folder = json_path.resolve().parent
+    table = parts_csv(art.parts, art.classes, art.units,
+                      {cid: template_path(stem, cid).name for cid in art.templates})
+    assembly = assembly_csv(art.parts, art.units)
+    listed = {"parts_csv": (csv_path(stem), table),
+              "assembly_csv": (csv_path(stem, "assembly"), assembly),
+              **{f"template_{cid}_dxf": (template_path(stem, cid), data)
+                 for cid, data in sorted(art.templates.items())}}
     data = {"units": art.units, "parts": art.parts, "classes": art.classes,
             "joints": art.joints,
-            "files": {"parts_csv": relative_input(csv_path(stem), json_path.resolve().parent,
-                                                  table)}}
+            "files": {key: relative_input(path, folder, b) for key, (path, b) in listed.items()}}
     files = artifact_files(KIND, stem, _obj_bytes(art.parts), data, inputs=art.inputs,
                            parameters=art.parameters, metrics=art.metrics, status=art.status)
-    return {**files, csv_path(stem): table}
+    return {**files, **{path: b for path, b in listed.values()}}
 
 
 def _check_part_points(parts: list[dict], json_path: Path) -> None:

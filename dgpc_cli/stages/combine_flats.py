@@ -12,8 +12,9 @@ quantity the sum over the patches.
   within one flat: :func:`dgpc_cli.strips.congruence.align`), else it founds a new class.
   Classes are renumbered ``C01``, ``C02``, ... in that order; a member that joins a class of
   another flat is aligned onto that class's representative anew (its ``alignment`` record).
-* The tolerance is the strictest of the flats' ``congruence_tol``; mirror images count only if
-  every flat allowed them (``unfold --mirror-ok``).
+* The tolerance is the strictest of the flats' ``congruence_tol_mm`` (a length, as within one
+  flat; a flat without one counts with the default); mirror images count only if every flat
+  allowed them (``unfold --mirror-ok``).
 """
 
 from __future__ import annotations
@@ -25,7 +26,8 @@ import numpy as np
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.flat import FlatArtifact
-from dgpc_cli.stages.unfold import CONGRUENCE_TOL
+from dgpc_cli.io.units import mm_per_unit
+from dgpc_cli.stages.unfold import CONGRUENCE_TOL_MM, class_record
 from dgpc_cli.strips.congruence import align
 
 #: Separator of a flat's tag and a part's own id in a combined part id.
@@ -44,10 +46,11 @@ class CombinedParts:
 
     def record(self) -> dict:
         """The merge as recorded in the sheets artifact (``data.combined``)."""
-        return {"tags": self.tags, "congruence_tol": self.congruence_tol,
+        return {"tags": self.tags, "congruence_tol_mm": self.congruence_tol,
                 "mirror_ok": self.mirror_ok,
                 "classes": [{k: c[k] for k in ("id", "representative", "quantity", "members",
-                                                "per_tag", "max_relative_error")}
+                                                "per_tag", "max_relative_error",
+                                                "max_deviation_mm")}
                             for c in self.classes]}
 
 
@@ -73,7 +76,8 @@ def combine_flats(flats: list[tuple[str, FlatArtifact]]) -> CombinedParts:
     tags = [tag for tag, _ in flats]
     if len(set(tags)) != len(tags):
         raise DgpcError(f"the flat artifacts' tags repeat ({', '.join(tags)})", source="nest")
-    tol = min(float(f.parameters.get("congruence_tol", CONGRUENCE_TOL)) for _, f in flats)
+    tol = min(float(f.parameters.get("congruence_tol_mm", CONGRUENCE_TOL_MM)) for _, f in flats)
+    mm = mm_per_unit(flats[0][1].units)    # the flats share their unit (checked before)
     mirror_ok = all(bool(f.parameters.get("mirror_ok", False)) for _, f in flats)
     parts: list[dict] = []
     merged: list[dict] = []             # merged classes, with the representative's record
@@ -87,7 +91,7 @@ def combine_flats(flats: list[tuple[str, FlatArtifact]]) -> CombinedParts:
             target = None
             for m in merged:
                 Ar, Br = _geodesics(m["rep"])
-                if align(A, B, Ar, Br, mirror_ok=mirror_ok).error <= tol * m["rep"]["length"]:
+                if align(A, B, Ar, Br, mirror_ok=mirror_ok).error * mm <= tol:
                     target = m
                     break
             if target is None:
@@ -103,15 +107,13 @@ def combine_flats(flats: list[tuple[str, FlatArtifact]]) -> CombinedParts:
             rep = realign.get(p["class"])
             if rep is not None:
                 al = align(*_geodesics(p), *_geodesics(rep), mirror_ok=mirror_ok)
-                record["alignment"] = al.record(rep["length"])
+                record["alignment"] = al.record(rep["length"], mm)
             target = next(m for m in merged if m["id"] == record["class"])
             target["members"].append(record["id"])
-            target["errors"].append(record["alignment"]["relative_error"])
+            target["errors"].append(record["alignment"]["error"])
             parts.append(record)
-    classes = [{"id": m["id"],
-                "representative": f"{m['tag']}{TAG_SEPARATOR}{m['rep']['id']}",
-                "quantity": len(m["members"]), "members": m["members"],
-                "per_tag": m["per_tag"],
-                "max_error": max(m["errors"]) * m["rep"]["length"],
-                "max_relative_error": max(m["errors"])} for m in merged]
+    classes = [{**class_record(m["id"], f"{m['tag']}{TAG_SEPARATOR}{m['rep']['id']}",
+                               m["members"], m["errors"], m["rep"]["length"]),
+                "max_deviation_mm": max(m["errors"]) * mm, "per_tag": m["per_tag"]}
+               for m in merged]
     return CombinedParts(parts, classes, tags, tol, mirror_ok)

@@ -17,15 +17,18 @@ from shapely.geometry import LineString, Polygon
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.units import from_mm, mm_per_unit
+from dgpc_cli.nesting.template import template_drawing
 from dgpc_cli.strips.boards import Board, cumulative, split_boards
 from dgpc_cli.strips.congruence import Alignment, congruence_classes
 from dgpc_cli.strips.develop import Development, develop_strip, signed_area
 from dgpc_cli.strips.trim import developed_part
+from dgpc_cli.strips.trimmed_boards import board_ring, split_trimmed
 
 log = logging.getLogger(__name__)
 
-#: Default congruence tolerance: largest point distance over the strip length (SPEC §8).
-CONGRUENCE_TOL = 1e-3
+#: Default congruence tolerance (mm): the largest point distance of two congruent parts
+#: optimally aligned (SPEC §6 unfold).
+CONGRUENCE_TOL_MM = 0.5
 #: Default stagger of the joints of neighbouring strips, as a fraction of the stock length.
 STAGGER_FRACTION = 0.25
 
@@ -39,6 +42,17 @@ def part_widths(A: np.ndarray, B: np.ndarray) -> tuple[float, float]:
     return float(d.min()), float(d.max())
 
 
+def board_record(d: Development, name: str, column: int, number: int, rows: list[int],
+                 positions: list[float]) -> dict:
+    """The part record (without class and alignment) of the developed strip or board ``d``."""
+    return {"id": name, "strip": int(column), "board": int(number),
+            "rows": [int(r) for r in rows], "positions": [float(x) for x in positions],
+            "outline": d.outline, "score": d.rulings, "label": d.label_point,
+            "geodesics": [d.A, d.B], "straightness": d.straightness, "strain": d.strain,
+            "length": d.length, "width": list(part_widths(d.A, d.B)),
+            "area": signed_area(d.outline)}
+
+
 def _boards(geometry: list, devs: list[Development], ids: list[str], columns: list[int],
             stock_length: float | None, stagger: float | None) -> list[Board]:
     """Every part as a board: one per strip without a stock length."""
@@ -50,13 +64,13 @@ def _boards(geometry: list, devs: list[Development], ids: list[str], columns: li
 
 
 def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
-                  congruence_tol: float = CONGRUENCE_TOL, mirror_ok: bool = False,
+                  congruence_tol: float = CONGRUENCE_TOL_MM, mirror_ok: bool = False,
                   stock_length: float | None = None, stagger: float | None = None,
                   source: str | None = None, trims: list | None = None
                   ) -> tuple[list[dict], list[dict], list[dict]]:
     """Develop every strip ``(A, B)`` of ``geometry`` (mm), cut it into boards no longer than
     ``stock_length`` (mm; None: whole strips) with joints ``stagger`` apart (default a quarter
-    of the stock), and classify the parts.
+    of the stock), and classify the parts within ``congruence_tol`` (mm).
 
     Returns the part records, class records and joint records of the flat artifact (see
     :mod:`dgpc_cli.io.flat`), in mm. DgpcError (naming ``source``) when a developed outline
@@ -69,9 +83,8 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
     devs = [develop_strip(A, B) for A, B in geometry]
     if trims is not None and any(t is not None for t in trims):
         if stock_length is not None:
-            raise DgpcError("strips trimmed to the reference's outline (planarize-strips "
-                            "--trim) are not cut into boards: unfold them without "
-                            "--stock-length", source="--stock-length")
+            return trimmed_boards(geometry, devs, ids, columns, trims, congruence_tol,
+                                  mirror_ok, stock_length, stagger, source)
         return _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_ok,
                                source)
     folded = [ids[i] for i, d in enumerate(devs) if not Polygon(d.outline).is_valid]
@@ -85,8 +98,9 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
     pieces = [develop_strip(*(np.asarray(X, float)[b.start:b.stop + 1]
                               for X in geometry[b.strip])) if split else devs[b.strip]
               for b in boards]
-    classes = congruence_classes([(d.A, d.B, d.length) for d in pieces], congruence_tol,
-                                 mirror_ok=mirror_ok)
+    classes = congruence_classes([(d.A, d.B) for d in pieces], congruence_tol,
+                                 [(columns[b.strip], b.number, names[i])
+                                  for i, b in enumerate(boards)], mirror_ok=mirror_ok)
     along = [0.5 * (cumulative(np.asarray(A, float)) + cumulative(np.asarray(B, float)))
              for A, B in geometry]
     parts: list[dict] = [{} for _ in pieces]
@@ -95,26 +109,68 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
         rep_len = pieces[cls.representative].length
         for i, al in zip(cls.members, cls.alignments, strict=True):
             d, b = pieces[i], boards[i]
-            parts[i] = {
-                "id": names[i], "strip": int(columns[b.strip]), "board": b.number,
-                "rows": [b.start, b.stop],
-                "positions": [float(along[b.strip][b.start]), float(along[b.strip][b.stop])],
-                "class": cls.id, "outline": d.outline, "score": d.rulings,
-                "label": d.label_point, "geodesics": [d.A, d.B],
-                "straightness": d.straightness, "strain": d.strain, "length": d.length,
-                "width": list(part_widths(d.A, d.B)), "area": signed_area(d.outline),
-                "alignment": al.record(rep_len)}
-        errors = [al.error for al in cls.alignments]
-        class_records.append({
-            "id": cls.id, "representative": names[cls.representative],
-            "quantity": len(cls.members), "members": [names[i] for i in cls.members],
-            "max_error": max(errors), "max_relative_error": max(errors) / rep_len})
+            parts[i] = {**board_record(d, names[i], columns[b.strip], b.number,
+                                       [b.start, b.stop],
+                                       [along[b.strip][b.start], along[b.strip][b.stop]]),
+                        "class": cls.id, "alignment": al.record(rep_len)}
+        class_records.append(class_record(cls.id, names[cls.representative],
+                                          [names[i] for i in cls.members],
+                                          [al.error for al in cls.alignments], rep_len))
     joints = [{"strip": ids[b.strip], "row": b.stop, "position": parts[i]["positions"][1],
                "parts": [names[i], names[i + 1]]}
               for i, b in enumerate(boards[:-1]) if boards[i + 1].strip == b.strip]
     log.info("%d parts in %d congruence classes, %d joints", len(parts), len(class_records),
              len(joints))
     return parts, class_records, joints
+
+
+def class_record(cid: str, representative: str, members: list[str], errors: list[float],
+                 rep_length: float) -> dict:
+    """A class of the flat artifact, its members' alignment errors and its representative's
+    length in mm."""
+    return {"id": cid, "representative": representative, "quantity": len(members),
+            "members": members, "max_error": max(errors),
+            "max_relative_error": max(errors) / rep_length, "max_deviation_mm": max(errors)}
+
+
+#: A part shorter than this (mm) is a slip of a unit, not a part (unfold warns).
+MIN_PART_MM = 10.0
+
+
+def scale_warnings(parts: list[dict], geometry: list, units: str, stock_length) -> list[str]:
+    """One-line warnings on an implausible scale (issue: no silent unit traps): a part
+    shorter than :data:`MIN_PART_MM`, or a ``stock_length`` (a
+    :class:`~dgpc_cli.cli.length.Length`, or None) longer than every strip, each naming the
+    likely fix. ``parts`` are the records of :func:`unfold_strips` and ``geometry`` the strips,
+    both in mm."""
+    out = []
+    shortest = min(parts, key=lambda p: p["length"])
+    if shortest["length"] < MIN_PART_MM:
+        out.append(f"part {shortest['id']} is {shortest['length']:.3g} mm long, under "
+                   f"{MIN_PART_MM:g} mm: the strips are in {units}; if the design is in metres, "
+                   "make the net with `init --units m`")
+    if stock_length is not None:
+        longest = max(0.5 * (float(cumulative(np.asarray(A))[-1]) +
+                             float(cumulative(np.asarray(B))[-1])) for A, B in geometry)
+        stock = stock_length.to_mm(units)
+        if stock > longest:
+            text = f"--stock-length {stock_length.text()}"
+            where = (f" is in the strips' unit ({units})" if stock_length.unit is None
+                     else "")
+            hint = (f": did you mean {stock_length.value:g}mm?"
+                    if stock_length.unit is None and units != "mm" else
+                    ": nothing is cut into boards")
+            out.append(f"{text}{where}, longer than every strip (the longest is "
+                       f"{longest / mm_per_unit(units):.4g} {units}){hint}")
+    return out
+
+
+def template_dxfs(parts: list[dict], classes: list[dict]) -> dict[str, bytes]:
+    """Class id -> the DXF bytes of its template (:mod:`dgpc_cli.nesting.template`): the
+    representative of every class, from the records of :func:`unfold_strips` (mm)."""
+    by_id = {p["id"]: p for p in parts}
+    return {c["id"]: template_drawing(by_id[c["representative"]], c["id"]).to_bytes(
+        f"template {c['id']}") for c in classes}
 
 
 def records_in_units(parts: list[dict], classes: list[dict], joints: list[dict], units: str
@@ -177,9 +233,8 @@ def _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_
                           "width": list(part_widths(ga, gb)),
                           "alignment": identity.record(part["length"]), "trimmed": True,
                           **part})
-            classes.append({"id": cls, "representative": piece["id"], "quantity": 1,
-                            "members": [piece["id"]], "max_error": 0.0,
-                            "max_relative_error": 0.0})
+            classes.append(class_record(cls, piece["id"], [piece["id"]], [0.0],
+                                        part["length"]))
     if not parts:
         raise DgpcError("no part lies inside the reference's outline", source=source)
     log.info("%d parts (%d trimmed to the outline) in %d congruence classes", len(parts),
@@ -194,12 +249,94 @@ def flat_metrics(parts: list[dict], classes: list[dict]) -> dict:
         "max_strain": max(p["strain"] for p in parts),
         "max_straightness": float(max(max(p["straightness"]) for p in parts)),
         "max_congruence_error": max(c["max_relative_error"] for c in classes),
+        "max_congruence_deviation_mm": max(c.get("max_deviation_mm", 0.0) for c in classes),
         "classes": {c["id"]: {"quantity": c["quantity"], "representative": c["representative"],
-                              "max_relative_error": c["max_relative_error"]} for c in classes},
+                              "members": c["members"],
+                              "max_relative_error": c["max_relative_error"],
+                              "max_deviation_mm": c.get("max_deviation_mm", 0.0)}
+                    for c in classes},
         "per_part": {p["id"]: {"strain": p["strain"], "straightness": p["straightness"],
                                "length": p["length"], "class": p["class"],
-                               "relative_error": p["alignment"]["relative_error"]}
+                               "relative_error": p["alignment"]["relative_error"],
+                               "deviation_mm": p["alignment"].get("deviation_mm", 0.0)}
                      for p in parts},
         "total_area": float(np.sum([p["area"] for p in parts])),
         "total_length": float(np.sum([p["length"] for p in parts])),
     }
+
+
+def trimmed_boards(geometry, devs, ids, columns, trims, congruence_tol, mirror_ok,
+                   stock_length, stagger, source):
+    """:func:`unfold_strips` with a stock length for strips clipped to the reference's outline
+    (mm): every trimmed part (a strip without a trim record: its whole length) cut at rulings
+    into boards (:mod:`dgpc_cli.strips.trimmed_boards`), ids ``S-v07.1``, ``S-v07b.2``, the
+    joints of neighbouring strips staggered. A board between two rulings that the outline does
+    not touch is developed and classified as a board of a whole strip; a board with an end cut
+    along the outline is its own class, as a trimmed part is."""
+    stagger = STAGGER_FRACTION * stock_length if stagger is None else stagger
+    along_a = [cumulative(np.asarray(A, float)) for A, _ in geometry]
+    along_b = [cumulative(np.asarray(B, float)) for _, B in geometry]
+    by_column = {int(v): i for i, v in enumerate(columns)}
+    joints: dict[int, list[int]] = {}
+    boards = []                       # (strip, part id, number, a, b, ring of the part)
+    for i in sorted(range(len(geometry)), key=lambda i: columns[i]):
+        m = len(geometry[i][0])
+        pieces = (trims[i]["parts"] if trims[i] is not None else
+                  [{"id": ids[i], "outline": [[0, 0], [m - 1, 0], [m - 1, 1], [0, 1]]}])
+        left = by_column.get(int(columns[i]) - 1)
+        forbidden = (along_b[left][joints[left]] if left in joints else np.zeros(0))
+        joints[i] = []
+        for piece in pieces:
+            ring = np.asarray(piece["outline"], float)
+            cuts = split_trimmed(devs[i], ring, stock_length, forbidden, stagger, along_a[i],
+                                 piece["id"])
+            joints[i] += cuts
+            ends = [float(ring[:, 0].min()), *cuts, float(ring[:, 0].max())]
+            boards += [(i, piece["id"], k + 1, a, b, ring)
+                       for k, (a, b) in enumerate(zip(ends[:-1], ends[1:], strict=True))]
+    parts, whole, cut = [], [], []
+    for i, pid, k, a, b, ring in boards:
+        A, B = (np.asarray(X, float) for X in geometry[i])
+        along = 0.5 * (along_a[i] + along_b[i])
+        r0, r1 = int(np.floor(a)), int(np.ceil(b))
+        board = board_ring(Polygon(ring), a, b)
+        sub = develop_strip(A[r0:r1 + 1], B[r0:r1 + 1])
+        record = board_record(sub, f"{pid}.{k}", columns[i], k, [r0, r1],
+                              np.interp([a, b], np.arange(len(along)), along))
+        if a == r0 and b == r1 and abs(Polygon(board).area - (b - a)) <= 1e-9 * (b - a):
+            whole.append((len(parts), sub))
+        else:
+            shifted = board - [r0, 0.0]
+            part = developed_part(sub.A, sub.B, shifted)
+            if not Polygon(part["outline"]).is_valid:
+                raise DgpcError(f"the developed outline of {pid}.{k} crosses itself",
+                                source=source)
+            ga, gb = part["geodesics"]
+            record.update(part, width=list(part_widths(ga, gb)), trimmed=True)
+            cut.append(len(parts))
+        parts.append(record)
+    classes = congruence_classes([(d.A, d.B) for _, d in whole], congruence_tol,
+                                 [(parts[j]["strip"], parts[j]["id"]) for j, _ in whole],
+                                 mirror_ok=mirror_ok) if whole else []
+    class_records = []
+    for cls in classes:
+        rep = parts[whole[cls.representative][0]]
+        for n, al in zip(cls.members, cls.alignments, strict=True):
+            parts[whole[n][0]].update({"class": cls.id, "alignment": al.record(rep["length"])})
+        class_records.append(class_record(cls.id, rep["id"],
+                                          [parts[whole[n][0]]["id"] for n in cls.members],
+                                          [al.error for al in cls.alignments], rep["length"]))
+    identity = Alignment(R=np.eye(2), t=np.zeros(2), relabel="identity", mirrored=False,
+                         error=0.0)
+    for j in cut:
+        cid = f"C{len(class_records) + 1:02d}"
+        parts[j].update({"class": cid, "alignment": identity.record(parts[j]["length"])})
+        class_records.append(class_record(cid, parts[j]["id"], [parts[j]["id"]], [0.0],
+                                          parts[j]["length"]))
+    joint_records = [{"strip": ids[i], "row": int(b), "position": parts[n]["positions"][1],
+                      "parts": [parts[n]["id"], parts[n + 1]["id"]]}
+                     for n, (i, pid, k, a, b, _) in enumerate(boards[:-1])
+                     if boards[n + 1][1] == pid]
+    log.info("%d boards (%d with an end cut along the outline) in %d congruence classes, "
+             "%d joints", len(parts), len(cut), len(class_records), len(joint_records))
+    return parts, class_records, joint_records

@@ -10,7 +10,10 @@ v+1 as its sides A and B). No joint of a strip may come within the stagger of a 
 neighbour on that geodesic, measured by arc length from the first row. Strips are cut in
 order of their column: each strip's joints avoid those of the strip before it (whose joints
 are fixed), and every board is made as long as the stock and the stagger allow (greedy from
-the first row, which gives the fewest boards for the strip).
+the first row, which gives the fewest boards for the strip). A strip takes the joints of the
+strip two columns before it instead, where they fit its stock, keep the stagger and need no
+more boards: the strips of a template (congruent strips) then alternate between two joint
+patterns, and their boards fall into as few templates.
 """
 
 from __future__ import annotations
@@ -50,29 +53,26 @@ def board_extent(dev: Development, a: int, b: int) -> float:
     return float(x.max() - x.min())
 
 
-def _reach(dev: Development, a: int, stock: float) -> list[int]:
-    """Rows b > a (farthest first) whose board a … b fits the stock."""
-    m = dev.A.shape[0]
-    ends = [b for b in range(a + 1, m) if board_extent(dev, a, b) <= stock]
-    return ends[::-1]
-
-
-def split_strip(dev: Development, stock: float, forbidden: np.ndarray, stagger: float,
-                positions: np.ndarray, name: str) -> list[int]:
-    """Joint rows of one developed strip: boards no longer than ``stock``; a joint at row u is
-    allowed when ``positions[u]`` (its arc length along the shared geodesic) is at least
-    ``stagger`` from every value of ``forbidden`` (the neighbour's joints there)."""
-    m = dev.A.shape[0]
+def split_run(extent, start: float, stop: float, candidates: list[int], stock: float,
+              forbidden: np.ndarray, stagger: float, positions: np.ndarray, name: str
+              ) -> list[int]:
+    """Joint rows of a run of a strip from ``start`` to ``stop`` (rows, or ``t`` where an
+    outline ends it): boards no longer than ``stock`` by ``extent(a, b)``, joints among the
+    rows ``candidates`` (ascending, inside the run), each as far as the stock allows; a joint
+    at row u is allowed when ``positions[u]`` (its arc length along the shared geodesic) is
+    at least ``stagger`` from every value of ``forbidden`` (the neighbour's joints there)."""
     joints: list[int] = []
-    a = 0
+    a = start
     while True:
-        ends = _reach(dev, a, stock)
-        if not ends:
-            raise DgpcError(f"{name}: the quad between rows {a} and {a + 1} alone is "
-                            f"{board_extent(dev, a, a + 1):.6g} long, more than the stock "
-                            f"length {stock:.6g}", source="--stock-length")
-        if ends[0] == m - 1:
+        if extent(a, stop) <= stock:
             return joints
+        ahead = [b for b in candidates if b > a]
+        ends = [b for b in ahead if extent(a, b) <= stock][::-1]      # farthest first
+        if not ends:
+            nxt = ahead[0] if ahead else stop
+            raise DgpcError(f"{name}: from row {a:g} to row {nxt:g} (the next ruling it can be "
+                            f"cut at) is {extent(a, nxt):.6g} long, more than the stock "
+                            f"length {stock:.6g}", source="--stock-length")
         ok = [b for b in ends if forbidden.size == 0
               or np.min(np.abs(positions[b] - forbidden)) >= stagger]
         if not ok:
@@ -81,6 +81,27 @@ def split_strip(dev: Development, stock: float, forbidden: np.ndarray, stagger: 
                             "smaller --stagger or a longer --stock-length", source="--stagger")
         joints.append(ok[0])
         a = ok[0]
+
+
+def split_strip(dev: Development, stock: float, forbidden: np.ndarray, stagger: float,
+                positions: np.ndarray, name: str) -> list[int]:
+    """Joint rows of one developed strip (:func:`split_run` over all its rows)."""
+    m = dev.A.shape[0]
+    return split_run(lambda a, b: board_extent(dev, a, b), 0, m - 1, list(range(1, m - 1)),
+                     stock, forbidden, stagger, positions, name)
+
+
+def keeps(dev: Development, joints: list[int], stock: float, forbidden: np.ndarray,
+          stagger: float, positions: np.ndarray) -> bool:
+    """Whether the joint rows ``joints`` of the developed strip ``dev`` give boards within
+    ``stock`` whose joints keep ``stagger`` from ``forbidden`` (as in :func:`split_strip`)."""
+    cuts = [0, *joints, dev.A.shape[0] - 1]
+    if any(b <= a for a, b in zip(cuts[:-1], cuts[1:], strict=True)):
+        return False
+    if any(board_extent(dev, a, b) > stock for a, b in zip(cuts[:-1], cuts[1:], strict=True)):
+        return False
+    return forbidden.size == 0 or not joints or bool(
+        np.min(np.abs(positions[joints][:, None] - forbidden[None, :])) >= stagger)
 
 
 def split_boards(devs: list[Development], geometry: list, columns: list[int], names: list[str],
@@ -101,6 +122,10 @@ def split_boards(devs: list[Development], geometry: list, columns: list[int], na
         forbidden = (along_b[left][joints[left]] if left is not None and left in joints
                      else np.zeros(0))
         joints[i] = split_strip(devs[i], stock, forbidden, stagger, along_a[i], names[i])
+        before = by_column.get(int(columns[i]) - 2)
+        if (before is not None and before in joints and len(joints[before]) <= len(joints[i])
+                and keeps(devs[i], joints[before], stock, forbidden, stagger, along_a[i])):
+            joints[i] = list(joints[before])
     for i in range(len(devs)):
         cuts = [0, *joints[i], devs[i].A.shape[0] - 1]
         out.append([Board(i, k + 1, a, b)

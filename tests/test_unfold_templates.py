@@ -1,0 +1,222 @@
+"""Cutting templates (issue "Strips that build the design", items 3 and 4): congruence within a
+length in the shop's unit (default 0.5 mm) whatever the order of the parts, a cut list with one
+line per template, one DXF per template, the copies nested each with its own id; and the unit
+traps of `unfold` (lengths with units, warnings on an implausible scale)."""
+
+import csv
+import json
+import random
+
+import ezdxf
+import numpy as np
+import pytest
+from cli_helpers import dgpc
+
+from dgpc_cli.io.atomic import write_files
+from dgpc_cli.io.flat import read_flat
+from dgpc_cli.io.sheets import read_sheets
+from dgpc_cli.io.strips import read_strips, strips_files
+from dgpc_cli.nesting.labels import short_id
+from dgpc_cli.stages.unfold import unfold_strips
+from dgpc_cli.strips.congruence import align, congruence_classes
+
+#: How much (mm) the end of side B of strip v is lengthened: a chain of parts 0.3 mm apart, so
+#: that which parts share a class depends on the order a greedy grouping meets them.
+STRETCH_MM = [0.0, 0.3, 0.6, 0.9, 1.2, 1.5]
+
+
+def _stretched(strips, stretch_mm):
+    """The strips with the last vertex of side B of strip v moved ``stretch_mm[v]`` along
+    its last edge (it stays in the plane of its quad: the strip stays planar)."""
+    k = {"m": 1000.0, "mm": 1.0}[strips.units]
+    geometry = []
+    for (A, B), s in zip(strips.geometry, stretch_mm, strict=True):
+        B = np.array(B, float)
+        e = B[-1] - B[-2]
+        B[-1] += (s / k) * e / np.linalg.norm(e)
+        geometry.append((np.array(A, float), B))
+    strips.geometry = geometry
+    return strips
+
+
+@pytest.fixture(scope="module")
+def chain(tmp_path_factory):
+    """A 9×7 cone net in metres (six congruent strips), its strips stretched by STRETCH_MM."""
+    d = tmp_path_factory.mktemp("templates")
+    dgpc("init", "--surface", "revolution", "--profile", "cone", "--rows", 9, "--cols", 7,
+         "--span", 60, "--units", "m", "-o", d / "cone")
+    dgpc("planarize-strips", d / "cone", "-o", d / "s")
+    write_files(strips_files(d / "chain", _stretched(read_strips(d / "s"), STRETCH_MM)))
+    dgpc("unfold", d / "chain", "-o", d / "flat")
+    return d
+
+
+def _mm_geodesics(part, units="m"):
+    k = {"m": 1000.0, "mm": 1.0}[units]
+    return tuple(k * np.asarray(g, float) for g in part["geodesics"])
+
+
+def _partition(flat):
+    return {frozenset(c["members"]) for c in flat.classes}
+
+
+def test_every_two_copies_of_a_template_agree_within_half_a_millimetre(chain):
+    """The default tolerance is 0.5 mm on strips in metres (not a fraction of their 3.9 m:
+    1e-3 of it, 3.9 mm, would have made one class); deviations recorded in mm."""
+    flat = read_flat(chain / "flat")
+    assert flat.units == "m" and flat.parameters["congruence_tol_mm"] == 0.5
+    parts = {p["id"]: p for p in flat.parts}
+    assert 2 <= len(flat.classes) <= 4
+    for c in flat.classes:
+        members = [_mm_geodesics(parts[i]) for i in c["members"]]
+        for a in members:
+            for b in members:
+                assert align(*a, *b).error <= 0.5 + 1e-9
+        rep = _mm_geodesics(parts[c["representative"]])
+        devs = [align(*m, *rep).error for m in members]
+        assert c["max_deviation_mm"] == pytest.approx(max(devs), abs=1e-9)
+        for i, dev in zip(c["members"], devs, strict=True):
+            assert parts[i]["alignment"]["deviation_mm"] == pytest.approx(dev, abs=1e-9)
+    # strips farther apart than 0.5 mm are in different classes
+    ends = {i: STRETCH_MM[int(i[3:])] for i in parts}
+    assert any(max(ends[i] for i in c["members"]) - min(ends[i] for i in c["members"]) > 0
+               for c in flat.classes)
+
+
+def test_tolerance_with_a_unit_or_in_the_strips_unit(chain, tmp_path):
+    dgpc("unfold", chain / "chain", "--congruence-tol", "2mm", "-o", tmp_path / "mm")
+    dgpc("unfold", chain / "chain", "--congruence-tol", "0.002", "-o", tmp_path / "m")
+    in_mm, in_m = read_flat(tmp_path / "mm"), read_flat(tmp_path / "m")
+    assert _partition(in_mm) == _partition(in_m) == {frozenset(p["id"] for p in in_m.parts)}
+    assert in_m.parameters["congruence_tol_mm"] == in_mm.parameters["congruence_tol_mm"] == 2.0
+    assert in_m.classes[0]["max_deviation_mm"] <= 2.0
+
+
+def test_classes_do_not_depend_on_the_order_of_the_parts(chain):
+    """Shuffled parts give the same classes and representatives (a greedy grouping that lets
+    each part join the first class it matches splits this chain differently by order)."""
+    strips = read_strips(chain / "chain")
+    geometry = [(1000.0 * np.asarray(A), 1000.0 * np.asarray(B)) for A, B in strips.geometry]
+    ids = [r["id"] for r in strips.records]
+    cols = [r["v"] for r in strips.records]
+
+    def run(order):
+        _, classes, _ = unfold_strips([geometry[i] for i in order], [ids[i] for i in order],
+                                      [cols[i] for i in order], congruence_tol=0.5)
+        return {(frozenset(c["members"]), c["representative"]) for c in classes}
+
+    reference = run(list(range(len(ids))))
+    rng = random.Random(7)
+    for _ in range(8):
+        order = list(range(len(ids)))
+        rng.shuffle(order)
+        assert run(order) == reference
+    # the same on the developed parts directly, with a tolerance that chains them
+    flat = read_flat(chain / "flat")
+    parts = [_mm_geodesics(p) for p in flat.parts]
+    names = [p["id"] for p in flat.parts]
+    first = None
+    for _ in range(8):
+        order = list(range(len(parts)))
+        rng.shuffle(order)
+        classes = congruence_classes([parts[i] for i in order], 0.35, [names[i] for i in order])
+        got = {frozenset(names[order[i]] for i in c.members) for c in classes}
+        first = first or got
+        assert got == first
+
+
+def test_cut_list_one_line_per_template_and_quantities_add_up(chain):
+    flat = read_flat(chain / "flat")
+    rows = list(csv.DictReader((chain / "flat.parts.csv").open()))
+    assert [r["class"] for r in rows] == [c["id"] for c in flat.classes]
+    copies = [i for r in rows for i in r["parts"].split()]
+    assert sorted(copies) == sorted(p["id"] for p in flat.parts)          # each part once
+    assert sum(int(r["quantity"]) for r in rows) == len(flat.parts)
+    for r, c in zip(rows, flat.classes, strict=True):
+        assert int(r["quantity"]) == len(r["parts"].split()) == c["quantity"]
+        assert r["representative"] in r["parts"].split()
+        assert float(r["max_deviation_mm"]) == pytest.approx(c["max_deviation_mm"], abs=1e-3)
+        rep = flat.part(r["representative"])
+        assert float(r["length_mm"]) == pytest.approx(1000.0 * rep["length"], abs=1e-3)
+    assembly = list(csv.DictReader((chain / "flat.assembly.csv").open()))
+    assert [(a["id"], a["class"]) for a in assembly] == [(p["id"], p["class"])
+                                                         for p in flat.parts]
+
+
+def test_one_dxf_per_template_reads_back_to_its_representative(chain):
+    flat = read_flat(chain / "flat")
+    rows = {r["class"]: r for r in csv.DictReader((chain / "flat.parts.csv").open())}
+    doc_files = json.loads((chain / "flat.json").read_text())["data"]["files"]
+    for c in flat.classes:
+        name = rows[c["id"]]["dxf"]
+        assert doc_files[f"template_{c['id']}_dxf"]["path"] == name == f"flat.{c['id']}.dxf"
+        doc = ezdxf.readfile(chain / name)
+        assert doc.dxfversion == "AC1024" and doc.header["$INSUNITS"] == 4
+        assert not doc.audit().has_errors
+        msp = doc.modelspace()
+        cuts = msp.query("LWPOLYLINE[layer=='CUT']")
+        assert len(cuts) == 1 and cuts[0].closed
+        outline = np.array([p[:2] for p in cuts[0].get_points("xy")])
+        rep = 1000.0 * np.asarray(flat.part(c["representative"])["outline"], float)
+        assert np.abs(outline - (rep - rep.min(axis=0))).max() <= 1e-6       # mm
+        scores = msp.query("LWPOLYLINE[layer=='SCORE']")
+        assert len(scores) == len(flat.part(c["representative"])["score"])
+        assert [t.dxf.text for t in msp.query("TEXT")] == [c["id"]]
+        assert {e.dxf.layer for e in msp} <= {"CUT", "SCORE", "LABEL"}
+
+
+def test_nest_places_every_copy_labelled_with_its_own_id(chain, tmp_path):
+    dgpc("nest", chain / "flat", "--sheet", "6100x2500", "-o", tmp_path / "sheets")
+    sheets = read_sheets(tmp_path / "sheets")
+    flat = read_flat(chain / "flat")
+    placements = sheets.data["placements"]
+    assert sorted(p["part"] for p in placements) == sorted(p["id"] for p in flat.parts)
+    for p in placements:
+        assert p["label"]["text"] in (p["part"], short_id(p["part"]))
+        assert p["class"] == flat.part(p["part"])["class"]
+    texts = []
+    for s in sheets.data["sheets"]:
+        doc = ezdxf.readfile(sheets.file(s["dxf"]))
+        texts += [t.dxf.text for t in doc.modelspace().query("TEXT[layer=='LABEL']")]
+    assert sorted(texts) == sorted(p["label"]["text"] for p in placements)
+
+
+def test_stock_length_in_the_strips_unit_warns_of_millimetres(chain, tmp_path):
+    res = dgpc("unfold", chain / "chain", "--stock-length", 2500, "-o", tmp_path / "f")
+    warnings = [line for line in res.stderr.splitlines() if "--stock-length" in line]
+    assert len(warnings) == 1
+    assert "--stock-length 2500 is in the strips' unit (m)" in warnings[0]
+    assert "did you mean 2500mm?" in warnings[0]
+    # with its unit: cut into boards no longer than 2.5 m, no warning
+    res = dgpc("unfold", chain / "chain", "--stock-length", "2500mm", "-o", tmp_path / "g")
+    assert "--stock-length" not in res.stderr
+    flat = read_flat(tmp_path / "g")
+    assert flat.parameters["stock_length"] == 2.5
+    assert all(np.ptp(np.asarray(p["outline"])[:, 0]) <= 2.5 + 1e-9 for p in flat.parts)
+    assert len(flat.parts) > 6
+
+
+def test_a_part_under_10_mm_warns(tmp_path):
+    dgpc("init", "--surface", "revolution", "--profile", "cone", "--rows", 5, "--cols", 4,
+         "--span", 60, "--units", "mm", "-o", tmp_path / "tiny")
+    dgpc("planarize-strips", tmp_path / "tiny", "-o", tmp_path / "s")
+    res = dgpc("unfold", tmp_path / "s", "-o", tmp_path / "f")
+    lines = [line for line in res.stderr.splitlines() if line.strip()]
+    assert len(lines) == 1 and "under 10 mm" in lines[0] and "--units m" in lines[0]
+
+
+@pytest.mark.parametrize("option", ["--congruence-tol", "--stock-length", "--stagger"])
+def test_help_names_units_and_ranges(option):
+    text = " ".join(dgpc("unfold", "--help").stdout.split())
+    at = text.index(f"{option} LENGTH")
+    line = text[at:at + 400]
+    assert "LENGTH" in line and "unit" in line and ("> 0" in line or ">= 0" in line)
+
+
+@pytest.mark.parametrize("args", [["--congruence-tol", "0.5 parsecs"],
+                                  ["--stock-length", "-2m"], ["--stagger", "nan"]])
+def test_bad_lengths_are_usage_errors(chain, tmp_path, args):
+    extra = ["--stock-length", "3m"] if args[0] == "--stagger" else []
+    res = dgpc("unfold", chain / "chain", *extra, *args, "-o", tmp_path / "f", expect=2)
+    assert args[0] in res.stderr
+    assert list(tmp_path.iterdir()) == []
