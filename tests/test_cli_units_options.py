@@ -20,9 +20,6 @@ LENGTH_OPTIONS = {"--spacing", "--gap", "--margin", "--stock-length", "--stagger
 #: Options that are angles: their help names degrees or radians.
 ANGLE_OPTIONS = {"--angle", "--span", "--twist", "--flat-angle", "--rotations"}
 UNIT = re.compile(r"\b(mm|cm|m|in|ft)\b|unit")
-#: Commands whose option declarations other branches own; the integrator removes a mark once
-#: their help passes (strict: a pass is reported).
-OWNED_ELSEWHERE = {"unfold": "unfold's --stagger names no unit (unfold's options: another branch)"}
 
 
 def _help_records(name):
@@ -57,9 +54,7 @@ def help_faults(name) -> list[str]:
     return faults
 
 
-@pytest.mark.parametrize("name", [
-    pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=OWNED_ELSEWHERE[n]))
-    if n in OWNED_ELSEWHERE else n for n in COMMANDS])
+@pytest.mark.parametrize("name", list(COMMANDS))
 def test_every_help_line_shows_its_unit_and_range(name):
     assert help_faults(name) == []
 

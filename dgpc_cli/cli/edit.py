@@ -35,7 +35,8 @@ LOOPBACK = "127.0.0.1"
               help="isometric: stay isometric to the input's surface of revolution; "
                    "revolution: isometric to some surface of revolution (as optimize).")
 @click.option("--handles", type=click.Path(path_type=Path),
-              help="Handles JSON to start from (as optimize --handles).")
+              help="Handles JSON to start from (as optimize --handles: grid indices [u, v], "
+                   "targets and offsets in the net's unit).")
 @click.option("--host", default=None,
               help=f"Address the page listens on [default: {LOOPBACK}, this machine only; "
                    "another address exposes the page to the network].")
