@@ -20,7 +20,8 @@ import numpy as np
 import shapely
 from shapely.geometry import Polygon, box
 
-from .geometry import CLEARANCE_MM, Part, bounds, minkowski_nfp, rotation_matrix
+from .geometry import CLEARANCE_MM, Part, bounds, rotation_matrix, shapes_of
+from .nfp import NfpCache, _norm
 from .pairs import Unit, expand, make_units
 
 log = logging.getLogger(__name__)
@@ -75,40 +76,56 @@ def _bottom_left(region, env, gravity: str) -> tuple[tuple, tuple[float, float]]
 
 
 class _SheetState:
-    def __init__(self):
-        self.placed: list[tuple[Part, float, tuple[float, float]]] = []
-        self.forbidden: dict[tuple[int, float], tuple[int, object]] = {}
+    def __init__(self, area: float):
+        self.placed: list[tuple[Unit, float, tuple[float, float]]] = []
+        self.forbidden: dict[tuple, tuple[int, object]] = {}
+        self.free = area
+
+
+def unit_nfp(nfps: NfpCache, a: Unit, rot_a: float, b: Unit, rot_b: float, cache: dict):
+    """NFP of unit b at ``rot_b`` around unit a at ``rot_a`` (at the origin): the union of its
+    components' shape no-fit polygons, each moved by the components' offsets."""
+    key = (a.key, _norm(rot_a), b.key, _norm(rot_b))
+    if key not in cache:
+        Ra, Rb = rotation_matrix(rot_a), rotation_matrix(rot_b)
+        polys = []
+        for ga, ra, oa in a.components:
+            for gb, rb, ob in b.components:
+                shift = Ra @ np.asarray(oa) - Rb @ np.asarray(ob)
+                nfp = nfps.get(ga, rot_a + ra, gb, rot_b + rb)
+                polys.append(nfp if not shift.any() else
+                             shapely.transform(nfp, lambda xy, s=shift: xy + s))
+        cache[key] = polys[0] if len(polys) == 1 else shapely.union_all(polys)
+    return cache[key]
 
 
 class BottomLeftFill:
-    """The engine: ``run(parts)`` → placements (see the module)."""
+    """The engine: ``run(units)`` → placements (see the module); ``nfps`` the shared no-fit
+    polygon cache (:class:`~dgpc_cli.nesting.nfp.NfpCache`)."""
 
-    def __init__(self, sheet: Sheet, rotations: list[float], gravity: str = "x"):
+    def __init__(self, sheet: Sheet, rotations: list[float], nfps: NfpCache,
+                 gravity: str = "x"):
         self.sheet = sheet
         self.gravity = gravity
         self.rotations = list(rotations)
-        self._nfp: dict[tuple, Polygon] = {}
+        self.nfps = nfps
+        self._units: dict = {}
 
-    def _nfp_of(self, fixed: Part, rot_f: float, moving: Part, rot_m: float) -> Polygon:
-        key = (fixed.group, rot_f, moving.group, rot_m)
-        if key not in self._nfp:
-            clearance = (self.sheet.spacing + CLEARANCE_MM + fixed.deviation
-                         + moving.deviation)
-            self._nfp[key] = minkowski_nfp(fixed.pieces, rot_f, moving.pieces, rot_m,
-                                           clearance)
-        return self._nfp[key]
-
-    def _forbidden(self, state: _SheetState, part: Part, rot: float):
-        key = (part.group, rot)
+    def _forbidden(self, state: _SheetState, unit: Unit, rot: float):
+        key = (unit.key, _norm(rot))
         count, union = state.forbidden.get(key, (0, Polygon()))
         if count < len(state.placed):
-            new = [shapely.transform(self._nfp_of(p, r, part, rot), lambda xy, t=t: xy + t)
-                   for p, r, t in state.placed[count:]]
+            new = [shapely.transform(unit_nfp(self.nfps, u, r, unit, rot, self._units),
+                                     lambda xy, t=t: xy + t)
+                   for u, r, t in state.placed[count:]]
             union = shapely.union_all([union, *new])
             state.forbidden[key] = (len(state.placed), union)
         return union
 
-    def _candidate(self, state: _SheetState, part: Part):
+    def _candidate(self, state: _SheetState, unit: Unit):
+        part = unit.part
+        if state.placed and part.area > state.free:
+            return None
         best = None
         for rot in part.rotations or self.rotations:
             ifr = inner_fit(part, rot, self.sheet)
@@ -118,7 +135,7 @@ class BottomLeftFill:
             rect = box(x0, y0, x1, y1) if (x1 > x0 and y1 > y0) else \
                 shapely.points([(x0, y0)])[0] if (x1 == x0 and y1 == y0) else \
                 shapely.linestrings([(x0, y0), (x1, y1)])
-            region = rect.difference(self._forbidden(state, part, rot)) if state.placed \
+            region = rect.difference(self._forbidden(state, unit, rot)) if state.placed \
                 else rect
             env = bounds(part.outline @ rotation_matrix(rot).T)
             found = _bottom_left(region, env, self.gravity)
@@ -136,26 +153,28 @@ class BottomLeftFill:
                        key=lambda u: (-round(units[u].part.area, 6), units[u].part.id))
         sheets: list[_SheetState] = []
         out: list[Placement] = []
+        inner = self.sheet.width * self.sheet.height
         for u in order:
-            part = units[u].part
+            unit = units[u]
             for s, state in enumerate([*sheets, None]):
                 if state is None:
-                    state = _SheetState()
+                    state = _SheetState(inner)
                     sheets.append(state)
-                found = self._candidate(state, part)
+                found = self._candidate(state, unit)
                 if found is not None:
                     _, rot, point = found
-                    state.placed.append((part, rot, point))
-                    for m in units[u].members:
+                    state.placed.append((unit, rot, point))
+                    state.free -= unit.part.area
+                    for m in unit.members:
                         r, t = expand(m, rot, point, self.rotations)
                         out.append(Placement(m.index, s, r, t))
                     break
             else:  # pragma: no cover - a fresh sheet takes any part that passed the checks
-                raise AssertionError(part.id)
+                raise AssertionError(unit.part.id)
             if progress is not None:
-                progress(len(units[u].members))
-        log.info("bottom-left fill: %d units on %d sheets (%d no-fit polygons)", len(units),
-                 len(sheets), len(self._nfp))
+                progress(len(unit.members))
+        log.info("bottom-left fill: %d units on %d sheets (%d no-fit polygons so far)",
+                 len(units), len(sheets), self.nfps.computed)
         return sorted(out, key=lambda p: (p.sheet, p.index))
 
 
@@ -174,11 +193,12 @@ def fill_sheets(parts: list[Part], sheet: Sheet, rotations: list[float],
     """The engine: pair congruent parts, fill sheets with gravity along x (columns) and along
     y (rows), keep the result with fewer sheets, then the shorter last sheet (ties: x).
     Returns the placements and a record of what was tried."""
-    units = make_units(parts, rotations, sheet.spacing)
+    nfps = NfpCache(shapes_of(parts), sheet.spacing)
+    units = make_units(parts, rotations, sheet.spacing, nfps)
     tried = {}
     results = {}
     for gravity in ("x", "y"):
-        placements = BottomLeftFill(sheet, rotations, gravity).run(units, progress)
+        placements = BottomLeftFill(sheet, rotations, nfps, gravity).run(units, progress)
         n = max(p.sheet for p in placements) + 1
         frac = used_fraction(parts, placements, sheet, gravity)
         tried[gravity] = {"sheets": n, "last_sheet_used": frac}
@@ -186,4 +206,5 @@ def fill_sheets(parts: list[Part], sheet: Sheet, rotations: list[float],
     best = min(results.values(), key=lambda r: r[:3])
     log.info("fill: gravity %s chosen (%s)", best[2], tried)
     return best[3], {"gravity": best[2], "tried": tried,
-                     "pairs": sum(len(u.members) == 2 for u in units)}
+                     "pairs": sum(len(u.members) == 2 for u in units),
+                     "shapes": len(nfps.shapes), "no_fit_polygons": nfps.computed}

@@ -340,6 +340,8 @@ def _sheets_page(json_path: Path) -> Page:
     legend = _layer_legend(SHEET_LAYERS, SHEET_LEGEND)
     figs = []
     for i, sheet in enumerate(data["sheets"]):
+        if "png" not in sheet:                      # nest --no-preview
+            continue
         png = art.file(sheet["png"]).read_bytes()
         title = (f"{sheet['id']} ({i + 1} of {count}), {W:g} × {H:g} {unit}: "
                  f"{counted(len(sheet['parts']), 'part')}, "
