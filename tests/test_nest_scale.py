@@ -177,3 +177,25 @@ def test_an_almost_empty_sheet_warns():
     parts = prepare_parts(_records(1), SCALE)
     assert scale_warning(parts, [0.2], "m", SCALE) is None
     assert "0.5 % used" in scale_warning(parts, [0.005], "m", SCALE)
+
+
+def test_full_sheets_are_skipped_without_no_fit_polygons(monkeypatch):
+    """Distinct long strips, a few to a sheet: a sheet where the probe box (inside every part)
+    no longer fits is skipped, so fewer no-fit polygons are computed for the same layout."""
+    records = []
+    for i in range(8):
+        rec = _records(1)[0]
+        rec["id"], rec["class"] = f"L{i}", f"C{i}"
+        k = np.array([3.0, 1.0 + 0.05 * i])
+        rec["outline"] = (np.asarray(rec["outline"]) * k).tolist()
+        rec["label"] = (np.asarray(rec["label"]) * k).tolist()
+        rec["geodesics"] = [(np.asarray(g) * k).tolist() for g in rec["geodesics"]]
+        records.append(rec)
+    sheet = Sheet(1000.0, 120.0, 5.0, 3.0)                     # two to a sheet
+    with_probe = nest_parts(records, sheet, [0.0, 180.0], scale=SCALE)
+    monkeypatch.setattr("dgpc_cli.nesting.blf.probe_box", lambda units, rotations: None)
+    without = nest_parts(records, sheet, [0.0, 180.0], scale=SCALE)
+    assert with_probe.placements == without.placements
+    assert with_probe.sheet_count == 4 and with_probe.engine_info["shapes"] == 8
+    assert with_probe.engine_info["no_fit_polygons"] == 16      # on its own sheet only
+    assert without.engine_info["no_fit_polygons"] == 48

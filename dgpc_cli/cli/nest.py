@@ -20,7 +20,7 @@ from dgpc_cli.cli.options import (
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.flat import read_flat
-from dgpc_cli.io.rhino import with_3dm
+from dgpc_cli.io.rhino import rhino_path, with_3dm
 from dgpc_cli.io.sheets import extra_path, sheets_files
 from dgpc_cli.io.units import mm_per_unit, same_units
 from dgpc_cli.nesting.blf import Sheet
@@ -100,6 +100,7 @@ def nest(ctx, stems, mold_stem, sheet_size, margin, spacing, rotations, units_ch
     """
     json_paths = [artifact_paths(stem)[0] for stem in stems]
     check_writable(output, force, extra_path(output, "parts_csv"),
+                   *([rhino_path(output)] if fmt == "3dm" else []),
                    *(existing_sheet_files(output) if not force else ()))
     flats = [read_flat(stem) for stem in stems]
     units = same_units([(str(p), f.units) for p, f in zip(json_paths, flats, strict=True)])

@@ -9,6 +9,11 @@ takes the feasible point with the least left edge, then the least top, over the 
 rotations (gravity x: columns fill from the left; gravity y: least top, then least left edge —
 rows, which lets congruent bands stagger). A part that fits nowhere opens a new sheet. Exact
 geometry, no time limit: the same input gives the same placements.
+
+No-fit polygons come from one cache (:mod:`~dgpc_cli.nesting.nfp`) shared by every sheet and
+both fill directions, one per pair of part shapes and relative rotation. Sheets that cannot take
+a part are skipped without any: one holding less free area than the part, or one where a probe
+box that every unit contains (:func:`probe_box`) no longer fits.
 """
 
 from __future__ import annotations
@@ -80,6 +85,45 @@ class _SheetState:
         self.placed: list[tuple[Unit, float, tuple[float, float]]] = []
         self.forbidden: dict[tuple, tuple[int, object]] = {}
         self.free = area
+        self.probe = (0, False)          # (placed count, the probe no longer fits)
+
+
+def _box_height(poly: Polygon, width: float) -> float:
+    """The height of an axis-aligned box ``width`` wide that ``poly`` contains (centred on
+    the middle of its vertical section through the centroid; 0 if none)."""
+    cx = poly.centroid.x
+    section = poly.intersection(shapely.linestrings([(cx, poly.bounds[1] - 1),
+                                                      (cx, poly.bounds[3] + 1)]))
+    if section.is_empty:
+        return 0.0
+    lo, hi = 0.0, float(section.length)
+    y0, y1 = section.bounds[1], section.bounds[3]
+    cy = 0.5 * (y0 + y1)
+    for _ in range(16):
+        mid = 0.5 * (lo + hi)
+        if poly.contains(box(cx - width / 2, cy - mid / 2, cx + width / 2, cy + mid / 2)):
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+def probe_box(units: list[Unit], rotations: list[float]) -> tuple[float, float] | None:
+    """Half sizes of an axis-aligned box that every unit contains at each of its rotations
+    (half its shortest length, the least height there), or None: a sheet where this box no
+    longer fits takes no unit (a unit that fits would carry the box with it)."""
+    cores = []
+    for u in units:
+        core = u.part.outline[:u.core] if u.core else u.part.outline
+        for r in u.part.rotations or rotations:
+            cores.append(Polygon(core @ rotation_matrix(r).T))
+    if not cores or not all(c.is_valid for c in cores):
+        return None
+    width = 0.5 * min(c.bounds[2] - c.bounds[0] for c in cores)
+    height = min(_box_height(c, width) for c in cores)
+    if not (width > 0 and height > 0):
+        return None
+    return 0.5 * width, 0.5 * height
 
 
 def unit_nfp(nfps: NfpCache, a: Unit, rot_a: float, b: Unit, rot_b: float, cache: dict):
@@ -110,6 +154,7 @@ class BottomLeftFill:
         self.rotations = list(rotations)
         self.nfps = nfps
         self._units: dict = {}
+        self.probe = None
 
     def _forbidden(self, state: _SheetState, unit: Unit, rot: float):
         key = (unit.key, _norm(rot))
@@ -122,9 +167,32 @@ class BottomLeftFill:
             state.forbidden[key] = (len(state.placed), union)
         return union
 
+    def _closed(self, state: _SheetState) -> bool:
+        """Whether the probe box (:func:`probe_box`) no longer fits on the sheet."""
+        count, closed = state.probe
+        if self.probe is None or closed or count == len(state.placed):
+            return closed
+        hx, hy = self.probe
+        m = self.sheet.margin + CLEARANCE_MM
+        x0, y0, x1, y1 = m + hx, m + hy, self.sheet.width - m - hx, self.sheet.height - m - hy
+        polys = []
+        for u, r, t in state.placed:
+            R = rotation_matrix(r)
+            for g, rc, oc in u.components:
+                nfp = self.nfps.around_box(g, r + rc, self.probe)
+                if nfp is None:
+                    return False
+                shift = R @ np.asarray(oc) + np.asarray(t)
+                polys.append(shapely.transform(nfp, lambda xy, s=shift: xy + s))
+        region = box(x0, y0, x1, y1) if (x1 > x0 and y1 > y0) else \
+            shapely.linestrings([(x0, y0), (max(x0, x1), max(y0, y1))])
+        closed = region.difference(shapely.union_all(polys)).is_empty
+        state.probe = (len(state.placed), closed)
+        return closed
+
     def _candidate(self, state: _SheetState, unit: Unit):
         part = unit.part
-        if state.placed and part.area > state.free:
+        if state.placed and (part.area > state.free or self._closed(state)):
             return None
         best = None
         for rot in part.rotations or self.rotations:
@@ -146,9 +214,11 @@ class BottomLeftFill:
                 best = (key, rot, point)
         return best
 
-    def run(self, units: list[Unit], progress=None) -> list[Placement]:
+    def run(self, units: list[Unit], progress=None, probe="auto") -> list[Placement]:
         """Place every unit (a part or a pair, :mod:`~dgpc_cli.nesting.pairs`); returns one
-        placement per part, sorted by sheet then part index."""
+        placement per part, sorted by sheet then part index. ``probe``: the probe box's half
+        sizes (:func:`probe_box`, computed when "auto")."""
+        self.probe = probe_box(units, self.rotations) if probe == "auto" else probe
         order = sorted(range(len(units)),
                        key=lambda u: (-round(units[u].part.area, 6), units[u].part.id))
         sheets: list[_SheetState] = []
@@ -195,10 +265,11 @@ def fill_sheets(parts: list[Part], sheet: Sheet, rotations: list[float],
     Returns the placements and a record of what was tried."""
     nfps = NfpCache(shapes_of(parts), sheet.spacing)
     units = make_units(parts, rotations, sheet.spacing, nfps)
+    probe = probe_box(units, rotations)
     tried = {}
     results = {}
     for gravity in ("x", "y"):
-        placements = BottomLeftFill(sheet, rotations, nfps, gravity).run(units, progress)
+        placements = BottomLeftFill(sheet, rotations, nfps, gravity).run(units, progress, probe)
         n = max(p.sheet for p in placements) + 1
         frac = used_fraction(parts, placements, sheet, gravity)
         tried[gravity] = {"sheets": n, "last_sheet_used": frac}

@@ -140,16 +140,17 @@ def _rings_apart(a: np.ndarray, b: np.ndarray, step: float, limit: float = np.in
                      shapely.distance(shapely.points(pb), ra).max())) + 0.5 * step
 
 
-def _match(part: Part, leader: Part, turns: list[float], tol: float):
+def _match(part: Part, leader: Part, turns: list[float], tol: float, centroid: dict,
+           perimeter: dict):
     """``(turn, offset, distance)`` placing the leader's shape on ``part`` (its centroid on the
-    part's, turned by one of ``turns``) within ``tol`` (mm), or None."""
-    own = Polygon(part.outline)
-    if abs(own.area - leader.area) > own.length * tol:
+    part's, turned by one of ``turns``) within ``tol`` (mm), or None. ``centroid``,
+    ``perimeter``: of each part by id."""
+    if abs(part.area - leader.area) > perimeter[id(part)] * tol:
         return None
     for q in turns:
-        shape = leader.outline @ rotation_matrix(q).T
-        d = np.asarray(own.centroid.coords[0]) - np.asarray(Polygon(shape).centroid.coords[0])
-        dist = _rings_apart(part.outline, shape + d, max(0.25 * tol, 1e-6), tol)
+        R = rotation_matrix(q)
+        d = centroid[id(part)] - R @ centroid[id(leader)]
+        dist = _rings_apart(part.outline, leader.outline @ R.T + d, max(0.25 * tol, 1e-6), tol)
         if dist <= tol:
             return q, (float(d[0]), float(d[1])), dist
     return None
@@ -175,12 +176,15 @@ def prepare_parts(flat_parts: list[dict], k: float, tol: float = GROUP_TOL_MM,
             label=k * np.asarray(rec["label"], float), geodesics=geod,
             area=float(poly.area), pieces=pieces, deviation=simplified_by,
             nfp_outline=simple))
+    polys = [Polygon(p.outline) for p in parts]
+    centroid = {id(p): np.asarray(g.centroid.coords[0]) for p, g in zip(parts, polys, strict=True)}
+    perimeter = {id(p): g.length for p, g in zip(parts, polys, strict=True)}
     leaders: list[int] = []
     for i, p in enumerate(parts):
         order = sorted(range(len(leaders)), key=lambda g: (parts[leaders[g]].cls != p.cls, g))
         for g in order:
             leader = parts[leaders[g]]
-            found = _match(p, leader, list(turns), tol)
+            found = _match(p, leader, list(turns), tol, centroid, perimeter)
             if found is not None:
                 q, d, dist = found
                 p.group, p.shape_rotation, p.shape_offset = g, q, d

@@ -117,6 +117,19 @@ class NfpCache:
             self._base[key] = nfp
         return self._base[key]
 
+    def around_box(self, g: int, rot: float, half: tuple[float, float]) -> Polygon | None:
+        """NFP of the axis-aligned box ``±half`` (a probe inside every part, clearance without
+        any deviation of its own) around shape ``g`` at ``rot``; None if degenerate."""
+        key = ("box", g, _norm(rot), half)
+        if key not in self._rotated:
+            clearance = self.spacing + CLEARANCE_MM + self.shapes[g][2]
+            grown = minkowski_sum(self.shapes[g][0] @ rotation_matrix(rot).T, disk(clearance))
+            hx, hy = half
+            box = np.array([[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]])
+            self._rotated[key] = None if grown is None else minkowski_sum(
+                np.asarray(grown.exterior.coords)[:-1], box)
+        return self._rotated[key]
+
     def get(self, ga: int, rot_a: float, gb: int, rot_b: float) -> Polygon:
         """NFP of shape ``gb`` at ``rot_b`` around shape ``ga`` at ``rot_a`` (degrees)."""
         key = (ga, _norm(rot_a), gb, _norm(rot_b))

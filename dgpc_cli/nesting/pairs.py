@@ -50,6 +50,7 @@ class Unit:
     members: list[Member]
     key: tuple = ()
     components: tuple = ()
+    core: int = 0          # a pair: its first member's outline is part.outline[:core]
 
 
 def _box_area(b) -> float:
@@ -141,7 +142,8 @@ def make_units(parts: list[Part], rotations: list[float], spacing: float,
                 pieces=lead.pieces, group=g, deviation=lead.deviation, rotations=unit_rots)
             units.append(Unit(geom, [Member(a, r1, (0.0, 0.0), qa, tuple(pa.shape_offset)),
                                      Member(b, r2, t, qb, tuple(pb.shape_offset))],
-                              key=("pair", g), components=((g, r1, (0.0, 0.0)), (g, r2, t))))
+                              key=("pair", g), components=((g, r1, (0.0, 0.0)), (g, r2, t)),
+                              core=len(pa.outline)))
         units += [single(i, parts[i], rotations) for i in sorted(leftover)]
     return units
 
