@@ -180,8 +180,8 @@ def test_an_almost_empty_sheet_warns():
 
 
 def test_full_sheets_are_skipped_without_no_fit_polygons(monkeypatch):
-    """Distinct long strips, a few to a sheet: a sheet where the probe box (inside every part)
-    no longer fits is skipped, so fewer no-fit polygons are computed for the same layout."""
+    """Distinct long strips, two to a sheet: a sheet where a part's probe box (inside it) no
+    longer fits is skipped, so fewer no-fit polygons are computed for the same layout."""
     records = []
     for i in range(8):
         rec = _records(1)[0]
@@ -193,9 +193,10 @@ def test_full_sheets_are_skipped_without_no_fit_polygons(monkeypatch):
         records.append(rec)
     sheet = Sheet(1000.0, 120.0, 5.0, 3.0)                     # two to a sheet
     with_probe = nest_parts(records, sheet, [0.0, 180.0], scale=SCALE)
-    monkeypatch.setattr("dgpc_cli.nesting.blf.probe_box", lambda units, rotations: None)
+    monkeypatch.setattr("dgpc_cli.nesting.blf.probe_boxes",
+                        lambda units, rotations, sheet: {})
     without = nest_parts(records, sheet, [0.0, 180.0], scale=SCALE)
     assert with_probe.placements == without.placements
     assert with_probe.sheet_count == 4 and with_probe.engine_info["shapes"] == 8
-    assert with_probe.engine_info["no_fit_polygons"] == 16      # on its own sheet only
+    assert with_probe.engine_info["no_fit_polygons"] <= 16      # on its own sheet only
     assert without.engine_info["no_fit_polygons"] == 48

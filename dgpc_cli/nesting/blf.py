@@ -13,7 +13,7 @@ geometry, no time limit: the same input gives the same placements.
 No-fit polygons come from one cache (:mod:`~dgpc_cli.nesting.nfp`) shared by every sheet and
 both fill directions, one per pair of part shapes and relative rotation. Sheets that cannot take
 a part are skipped without any: one holding less free area than the part, or one where a probe
-box that every unit contains (:func:`probe_box`) no longer fits.
+box that the part contains (:func:`probe_boxes`) no longer fits.
 """
 
 from __future__ import annotations
@@ -85,7 +85,7 @@ class _SheetState:
         self.placed: list[tuple[Unit, float, tuple[float, float]]] = []
         self.forbidden: dict[tuple, tuple[int, object]] = {}
         self.free = area
-        self.probe = (0, False)          # (placed count, the probe no longer fits)
+        self.probes: dict = {}           # probe → (placed count, the probe no longer fits)
 
 
 def _box_height(poly: Polygon, width: float) -> float:
@@ -108,22 +108,31 @@ def _box_height(poly: Polygon, width: float) -> float:
     return lo
 
 
-def probe_box(units: list[Unit], rotations: list[float]) -> tuple[float, float] | None:
-    """Half sizes of an axis-aligned box that every unit contains at each of its rotations
-    (half its shortest length, the least height there), or None: a sheet where this box no
-    longer fits takes no unit (a unit that fits would carry the box with it)."""
-    cores = []
+#: Probe boxes are rounded down to this fraction of the sheet's shorter side (few distinct
+#: probes, each still inside its parts).
+PROBE_GRID = 0.02
+
+
+def probe_boxes(units: list[Unit], rotations: list[float], sheet: Sheet) -> dict:
+    """Per unit key the half sizes of an axis-aligned box the unit contains at each of its
+    rotations (half its length, the least height there, rounded down to
+    :data:`PROBE_GRID`), or None: a sheet where the box no longer fits cannot take the unit
+    (the unit would carry the box with it)."""
+    grid = PROBE_GRID * min(sheet.width, sheet.height)
+    out: dict = {}
     for u in units:
+        if u.key in out:
+            continue
         core = u.part.outline[:u.core] if u.core else u.part.outline
-        for r in u.part.rotations or rotations:
-            cores.append(Polygon(core @ rotation_matrix(r).T))
-    if not cores or not all(c.is_valid for c in cores):
-        return None
-    width = 0.5 * min(c.bounds[2] - c.bounds[0] for c in cores)
-    height = min(_box_height(c, width) for c in cores)
-    if not (width > 0 and height > 0):
-        return None
-    return 0.5 * width, 0.5 * height
+        polys = [Polygon(core @ rotation_matrix(r).T) for r in u.part.rotations or rotations]
+        if not all(c.is_valid for c in polys):
+            out[u.key] = None
+            continue
+        width = 0.5 * min(c.bounds[2] - c.bounds[0] for c in polys)
+        height = min(_box_height(c, width) for c in polys)
+        hx, hy = (grid * np.floor(0.5 * v / grid) for v in (width, height))
+        out[u.key] = (float(hx), float(hy)) if hx > 0 and hy > 0 else None
+    return out
 
 
 def unit_nfp(nfps: NfpCache, a: Unit, rot_a: float, b: Unit, rot_b: float, cache: dict):
@@ -154,7 +163,7 @@ class BottomLeftFill:
         self.rotations = list(rotations)
         self.nfps = nfps
         self._units: dict = {}
-        self.probe = None
+        self.probes: dict = {}
 
     def _forbidden(self, state: _SheetState, unit: Unit, rot: float):
         key = (unit.key, _norm(rot))
@@ -167,19 +176,22 @@ class BottomLeftFill:
             state.forbidden[key] = (len(state.placed), union)
         return union
 
-    def _closed(self, state: _SheetState) -> bool:
-        """Whether the probe box (:func:`probe_box`) no longer fits on the sheet."""
-        count, closed = state.probe
-        if self.probe is None or closed or count == len(state.placed):
+    def _closed(self, state: _SheetState, unit: Unit) -> bool:
+        """Whether the unit's probe box (:func:`probe_boxes`) no longer fits on the sheet."""
+        probe = self.probes.get(unit.key)
+        if probe is None:
+            return False
+        count, closed = state.probes.get(probe, (0, False))
+        if closed or count == len(state.placed):
             return closed
-        hx, hy = self.probe
+        hx, hy = probe
         m = self.sheet.margin + CLEARANCE_MM
         x0, y0, x1, y1 = m + hx, m + hy, self.sheet.width - m - hx, self.sheet.height - m - hy
         polys = []
         for u, r, t in state.placed:
             R = rotation_matrix(r)
             for g, rc, oc in u.components:
-                nfp = self.nfps.around_box(g, r + rc, self.probe)
+                nfp = self.nfps.around_box(g, r + rc, probe)
                 if nfp is None:
                     return False
                 shift = R @ np.asarray(oc) + np.asarray(t)
@@ -187,12 +199,12 @@ class BottomLeftFill:
         region = box(x0, y0, x1, y1) if (x1 > x0 and y1 > y0) else \
             shapely.linestrings([(x0, y0), (max(x0, x1), max(y0, y1))])
         closed = region.difference(shapely.union_all(polys)).is_empty
-        state.probe = (len(state.placed), closed)
+        state.probes[probe] = (len(state.placed), closed)
         return closed
 
     def _candidate(self, state: _SheetState, unit: Unit):
         part = unit.part
-        if state.placed and (part.area > state.free or self._closed(state)):
+        if state.placed and (part.area > state.free or self._closed(state, unit)):
             return None
         best = None
         for rot in part.rotations or self.rotations:
@@ -214,11 +226,12 @@ class BottomLeftFill:
                 best = (key, rot, point)
         return best
 
-    def run(self, units: list[Unit], progress=None, probe="auto") -> list[Placement]:
+    def run(self, units: list[Unit], progress=None, probes=None) -> list[Placement]:
         """Place every unit (a part or a pair, :mod:`~dgpc_cli.nesting.pairs`); returns one
-        placement per part, sorted by sheet then part index. ``probe``: the probe box's half
-        sizes (:func:`probe_box`, computed when "auto")."""
-        self.probe = probe_box(units, self.rotations) if probe == "auto" else probe
+        placement per part, sorted by sheet then part index. ``probes``: the units' probe
+        boxes (:func:`probe_boxes`, computed when None)."""
+        self.probes = probe_boxes(units, self.rotations, self.sheet) if probes is None \
+            else probes
         order = sorted(range(len(units)),
                        key=lambda u: (-round(units[u].part.area, 6), units[u].part.id))
         sheets: list[_SheetState] = []
@@ -265,11 +278,11 @@ def fill_sheets(parts: list[Part], sheet: Sheet, rotations: list[float],
     Returns the placements and a record of what was tried."""
     nfps = NfpCache(shapes_of(parts), sheet.spacing)
     units = make_units(parts, rotations, sheet.spacing, nfps)
-    probe = probe_box(units, rotations)
+    probes = probe_boxes(units, rotations, sheet)
     tried = {}
     results = {}
     for gravity in ("x", "y"):
-        placements = BottomLeftFill(sheet, rotations, nfps, gravity).run(units, progress, probe)
+        placements = BottomLeftFill(sheet, rotations, nfps, gravity).run(units, progress, probes)
         n = max(p.sheet for p in placements) + 1
         frac = used_fraction(parts, placements, sheet, gravity)
         tried[gravity] = {"sheets": n, "last_sheet_used": frac}
