@@ -100,15 +100,20 @@ class NfpCache:
     def _clearance(self, ga: int, gb: int) -> float:
         return (self.spacing + CLEARANCE_MM + self.shapes[ga][2] + self.shapes[gb][2])
 
+    def _grown_of(self, g: int, clearance: float) -> Polygon | None:
+        """Shape ``g`` grown by the 32-gon around the disk of ``clearance`` (turned with the
+        shape, the 32-gon still holds the disk)."""
+        if (g, clearance) not in self._grown:
+            self._grown[(g, clearance)] = minkowski_sum(self.shapes[g][0], disk(clearance)) \
+                if clearance > 0 else Polygon(self.shapes[g][0])
+        return self._grown[(g, clearance)]
+
     def _base_nfp(self, ga: int, gb: int, rel: float) -> Polygon:
         key = (ga, gb, rel)
         if key not in self._base:
             clearance = self._clearance(ga, gb)
             a, b = self.shapes[ga], self.shapes[gb]
-            if (ga, clearance) not in self._grown:
-                self._grown[(ga, clearance)] = minkowski_sum(a[0], disk(clearance)) \
-                    if clearance > 0 else Polygon(a[0])
-            grown = self._grown[(ga, clearance)]
+            grown = self._grown_of(ga, clearance)
             moving = -(b[0] @ rotation_matrix(rel).T)
             nfp = None if grown is None else minkowski_sum(
                 np.asarray(grown.exterior.coords)[:-1], moving)
@@ -122,12 +127,11 @@ class NfpCache:
         any deviation of its own) around shape ``g`` at ``rot``; None if degenerate."""
         key = ("box", g, _norm(rot), half)
         if key not in self._rotated:
-            clearance = self.spacing + CLEARANCE_MM + self.shapes[g][2]
-            grown = minkowski_sum(self.shapes[g][0] @ rotation_matrix(rot).T, disk(clearance))
+            grown = self._grown_of(g, self.spacing + CLEARANCE_MM + self.shapes[g][2])
             hx, hy = half
             box = np.array([[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]])
             self._rotated[key] = None if grown is None else minkowski_sum(
-                np.asarray(grown.exterior.coords)[:-1], box)
+                np.asarray(grown.exterior.coords)[:-1] @ rotation_matrix(rot).T, box)
         return self._rotated[key]
 
     def get(self, ga: int, rot_a: float, gb: int, rot_b: float) -> Polygon:
