@@ -1,5 +1,12 @@
 """Nesting benchmark (SPEC §6 nest, §10): our sheets' overall utilization beside spyrrow's own
-single-strip density on the same parts, in the same run.
+single-strip density on the same parts, in the same run; then the facade sets, time and sheets
+of the default fill beside spyrrow sheet by sheet (``--engine spyrrow``), in the same run.
+
+Facade sets (built with dgpc in a temporary folder unless given): the Gehry facade's four
+patches (samples/projects/gehry-facade.toml: 48 strips) on 6000 × 1250 mm sheets, and the
+demo wall's strips cut into boards (``unfold --stock-length 2.5``: 39 boards) on 3000 × 1500
+mm. Targets (issue "nesting that scales with the facade"): the 48 Gehry parts on 16 sheets in
+≤ 10 s, the 39 boards on ≤ 7 sheets.
 
 Sample: the flat parts of a revolution-isometric net — a full-ring catenoid meridian net
 (21 × 25, 24 strips) bent by Minding's bending (λ = 0.7), planarized and unfolded, at scale 100
@@ -9,6 +16,7 @@ rotations and spacing), seed 0, one worker. Ratio = our overall utilization (eve
 counted in full) / spyrrow's strip density.
 
     python benchmarks/nesting_bench.py [--sheet 1650x800] [--time-limit 10]
+        [--gehry FLAT FLAT FLAT FLAT] [--boards FLAT] [--sheet-time 3]
 """
 
 from __future__ import annotations
@@ -24,9 +32,10 @@ from dgpc_cli.cli.main import cli
 from dgpc_cli.io.flat import read_flat
 from dgpc_cli.io.net import NetArtifact, read_net, write_net
 from dgpc_cli.io.sheets import read_sheets
+from dgpc_cli.nesting.blf import Sheet
 from dgpc_cli.nesting.geometry import CLEARANCE_MM, prepare_parts, transform
 from dgpc_cli.nesting.strip import strip_density
-from dgpc_cli.stages.nest import parse_sheet
+from dgpc_cli.stages.nest import nest_parts, parse_sheet
 from dgpc_cli.surfaces.minding import minding_bend
 
 
@@ -46,6 +55,57 @@ def sample_flat(folder: Path) -> Path:
     return folder / "flat"
 
 
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def gehry_flats(folder: Path) -> list[Path]:
+    """The four Gehry patches' flat artifacts (as in samples/projects/gehry-facade.toml)."""
+    _dgpc("init", "--surface", "revolution", "--profile", ROOT / "samples/profiles/gehry.csv",
+          "--rows", 21, "--cols", 13, "--span", 90, "--units", "m", "-o", folder / "base")
+    out = []
+    for k in range(1, 5):
+        _dgpc("optimize", folder / "base", "--mode", "isometric", "--handles",
+              ROOT / f"samples/handles/gehry-{k}-21x13.json", "--steps", 5, "--max-strain",
+              3e-4, "--gpc-tol", 1e-4, "-o", folder / f"facade-{k}")
+        _dgpc("planarize-strips", folder / f"facade-{k}", "-o", folder / f"strips-{k}")
+        _dgpc("unfold", folder / f"strips-{k}", "-o", folder / f"facade-{k}-flat")
+        out.append(folder / f"facade-{k}-flat")
+    return out
+
+
+def wall_boards(folder: Path) -> Path:
+    """The demo wall's strips cut into boards 2.5 m long (pipelines/timber-cladding.mk)."""
+    _dgpc("init", "--surface", "revolution", "--profile", ROOT / "samples/profiles/wall.csv",
+          "--rows", 21, "--cols", 13, "--span", 60, "--units", "m", "-o", folder / "base")
+    _dgpc("optimize", folder / "base", "--mode", "isometric", "--handles",
+          ROOT / "samples/handles/wall-21x13.json", "--steps", 5, "--max-strain", 3e-4,
+          "--gpc-tol", 1e-4, "-o", folder / "wall")
+    _dgpc("planarize-strips", folder / "wall", "-o", folder / "strips")
+    _dgpc("unfold", folder / "strips", "--stock-length", 2.5, "-o", folder / "boards")
+    return folder / "boards"
+
+
+def facade_set(name: str, stems: list[Path], sheet: Sheet, sheet_time: float) -> None:
+    """Time and sheets of the default fill and of spyrrow sheet by sheet on one set."""
+    from dgpc_cli.stages.combine_flats import combine_flats, flat_tags
+
+    flats = [read_flat(s) for s in stems]
+    records = flats[0].parts if len(flats) == 1 else \
+        combine_flats(list(zip(flat_tags(stems), flats, strict=True))).parts
+    rows = {}
+    for engine in ("fill", "spyrrow"):
+        t0 = time.perf_counter()
+        result = nest_parts(records, sheet, [0.0, 180.0], units=flats[0].units, engine=engine,
+                            time_limit=sheet_time)
+        rows[engine] = (result.sheet_count, time.perf_counter() - t0, result.engine_info)
+    (n_f, t_f, info), (n_s, t_s, _) = rows["fill"], rows["spyrrow"]
+    print(f"{name}: {len(records)} parts, sheet {sheet.width:g}x{sheet.height:g} mm")
+    print(f"  fill (default)      {n_f} sheets  {t_f:6.1f} s  ({info.get('no_fit_polygons')} "
+          f"no-fit polygons, {info.get('shapes')} shapes, {info.get('pairs')} pairs)")
+    print(f"  spyrrow per sheet   {n_s} sheets  {t_s:6.1f} s  (budget {sheet_time:g} s a sheet)")
+    print(f"  ratio fill/spyrrow  sheets {n_f / n_s:.3f}, time {t_f / t_s:.3f}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sheet", default="1650x800")
@@ -53,7 +113,25 @@ def main() -> None:
     ap.add_argument("--spacing", type=float, default=3.0)
     ap.add_argument("--scale", type=float, default=100.0)
     ap.add_argument("--time-limit", type=float, default=10.0)
+    ap.add_argument("--gehry", nargs=4, type=Path, metavar="FLAT",
+                    help="the four Gehry patches' flat artifacts (else built, minutes)")
+    ap.add_argument("--boards", type=Path, metavar="FLAT",
+                    help="the demo wall's boards (else built)")
+    ap.add_argument("--sheet-time", type=float, default=3.0,
+                    help="spyrrow's budget per sheet (s) on the facade sets")
     args = ap.parse_args()
+    single_strip(args)
+    with tempfile.TemporaryDirectory() as tmp:
+        gehry = args.gehry or gehry_flats(Path(tmp))
+        facade_set("Gehry facade, 4 patches", gehry, Sheet(6000, 1250, 10, 3), args.sheet_time)
+    with tempfile.TemporaryDirectory() as tmp:
+        boards = [args.boards or wall_boards(Path(tmp))]
+        facade_set("demo wall in 2.5 m boards", boards, Sheet(3000, 1500, 10, 3),
+                   args.sheet_time)
+
+
+def single_strip(args) -> None:
+    """The catenoid sample beside spyrrow's single strip."""
     width, height = parse_sheet(args.sheet)
     with tempfile.TemporaryDirectory() as tmp:
         flat = sample_flat(Path(tmp))

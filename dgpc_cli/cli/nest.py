@@ -21,19 +21,21 @@ from dgpc_cli.cli.options import (
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.flat import read_flat
-from dgpc_cli.io.rhino import with_3dm
+from dgpc_cli.io.rhino import rhino_path, with_3dm
 from dgpc_cli.io.sheets import extra_path, sheets_files
 from dgpc_cli.io.units import mm_per_unit, same_units
 from dgpc_cli.nesting.blf import Sheet
 from dgpc_cli.nesting.tools import TOOLS, resolve_tool
 from dgpc_cli.stages.nest import (
     ENGINES,
+    existing_sheet_files,
     mold_map,
     nest_parts,
     parse_rotations,
     parse_sheet,
     parts_csv,
     sheet_drawings,
+    sheet_previews,
     sheets_data,
     sheets_metrics,
     sheets_obj,
@@ -100,13 +102,15 @@ def _parsed(parser):
               help="spyrrow's time budget per sheet (engine spyrrow).")
 @click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True,
               help="Random seed (engine spyrrow).")
+@click.option("--no-preview", "no_preview", is_flag=True,
+              help="Write no SVG/PNG previews of the sheets (the DXFs only: faster).")
 @output_opt
 @force_opt
 @format_opt
 @click.pass_context
 def nest(ctx, stems, mold_stem, sheet_size, tool, kerf, tool_diameter, margin, spacing, border,
-         label_style, rotations, units_check, scale, engine, time_limit, seed, output, force,
-         fmt):
+         label_style, rotations, units_check, scale, engine, time_limit, seed, no_preview, output,
+         force, fmt):
     """Place every part of the flat artifact FLAT (each congruence class in its quantity) on
     as few sheets as it can, and write the sheets artifact -o SHEETS: SHEETS.json, .obj,
     .parts.csv and per sheet SHEETS.sheetNN.dxf/.svg/.png (with --mold, .moldmap.dxf).
@@ -128,7 +132,9 @@ def nest(ctx, stems, mold_stem, sheet_size, tool, kerf, tool_diameter, margin, s
         raise click.BadParameter(message, ctx=ctx, param_hint=f"'{option}'") from None
     margin, spacing = cutter.margin, cutter.spacing
     json_paths = [artifact_paths(stem)[0] for stem in stems]
-    check_writable(output, force, extra_path(output, "parts_csv"))
+    check_writable(output, force, extra_path(output, "parts_csv"),
+                   *([rhino_path(output)] if fmt == "3dm" else []),
+                   *(existing_sheet_files(output) if not force else ()))
     flats = [read_flat(stem) for stem in stems]
     units = same_units([(str(p), f.units) for p, f in zip(json_paths, flats, strict=True)])
     check_units(units_check, units, json_paths[0])
@@ -157,9 +163,13 @@ def nest(ctx, stems, mold_stem, sheet_size, tool, kerf, tool_diameter, margin, s
     extra: dict[str, bytes] = {"parts_csv": parts_csv(result, flat_parts,
                                                       scale * mm_per_unit(units))}
     drawings = sheet_drawings(result, border=border, label_style=label_style)
-    for s, (dxf, svg, png, _) in enumerate(drawings):
-        extra.update({f"sheet{s + 1:02d}_dxf": dxf, f"sheet{s + 1:02d}_svg": svg,
-                      f"sheet{s + 1:02d}_png": png})
+    for s, (dxf, _) in enumerate(drawings):
+        extra[f"sheet{s + 1:02d}_dxf"] = dxf
+    if not no_preview:
+        log.info("%d cut sheets drawn; rendering their previews", len(drawings))
+        for s, (dxf, _) in enumerate(drawings):
+            svg, png = sheet_previews(result, s, dxf)
+            extra.update({f"sheet{s + 1:02d}_svg": svg, f"sheet{s + 1:02d}_png": png})
     out_json, _ = artifact_paths(output)
     folder = out_json.resolve().parent
     inputs = ({"flat": file_input(json_paths[0], folder)} if combined is None else
@@ -167,8 +177,9 @@ def nest(ctx, stems, mold_stem, sheet_size, tool, kerf, tool_diameter, margin, s
     if mold is not None:
         extra["moldmap_dxf"], extra["moldmap_png"] = mold_map(mold, scale)
         inputs["mold"] = file_input(artifact_paths(mold_stem)[0], folder)
-    data = sheets_data(result, [d[3] for d in drawings], units=units, scale=scale,
-                       engine=engine, time_limit=time_limit, seed=seed)
+    data = sheets_data(result, [d[1] for d in drawings], units=units, scale=scale,
+                       engine=engine, time_limit=time_limit, seed=seed,
+                       previews=not no_preview)
     metrics = sheets_metrics(data)
     if combined is not None:
         data["combined"] = combined.record()

@@ -70,15 +70,16 @@ def check_units(given: str | None, actual: str, source) -> None:
 
 
 def check_writable(stem: Path, force: bool, *extra: Path) -> None:
-    """Fail early (before any work) when an output exists and --force is not given."""
+    """Fail early (before any work) when the output's folder is missing, or an output exists
+    and --force is not given."""
+    parent = Path(stem).parent
+    if not parent.is_dir():
+        raise DgpcError("directory does not exist", source=parent)
     if force:
         return
     for path in (*artifact_paths(stem), *extra):
         if path.exists():
             raise DgpcError("already exists; use --force to overwrite", source=path)
-    parent = Path(stem).parent
-    if not parent.is_dir():
-        raise DgpcError("directory does not exist", source=parent)
 
 
 def show_progress(ctx) -> bool:

@@ -52,8 +52,11 @@ class Part:
     """One flat part in mm: ``outline (n, 2)`` ccw, ``score`` open polylines, ``label`` point,
     ``geodesics`` its two developed geodesics ``A, B (m, 2)``, ``pieces (k, 4, 2)`` convex
     pieces (triangles repeat a vertex), ``group`` index of parts sharing no-fit polygons and
-    ``deviation``: how far (mm) the outline may lie from the pieces its no-fit polygons use
-    (its group leader's, of a simplified outline where it is long; added to the spacing)."""
+    ``deviation``: how far (mm) the outline may lie from the shape its no-fit polygons use
+    (its group leader's, of a simplified outline where it is long; added to the spacing);
+    ``nfp_outline`` the outline the no-fit polygons use (simplified where long), and
+    ``shape_rotation``, ``shape_offset``: the part ≈ R(shape_rotation) · leader + offset, the
+    leader's ``nfp_outline`` and ``pieces`` being its group's shape."""
 
     id: str
     strip: int
@@ -67,6 +70,9 @@ class Part:
     group: int = 0
     deviation: float = 0.0
     rotations: tuple | None = None
+    nfp_outline: np.ndarray | None = field(default=None, repr=False)
+    shape_rotation: float = 0.0
+    shape_offset: tuple = (0.0, 0.0)
 
 
 def _convex(poly: np.ndarray) -> bool:
@@ -120,9 +126,43 @@ def piece_outline(outline: np.ndarray) -> tuple[np.ndarray, float]:
     return coords, tol
 
 
-def prepare_parts(flat_parts: list[dict], k: float, tol: float = GROUP_TOL_MM) -> list[Part]:
-    """The flat artifact's part records scaled by ``k`` (mm per model unit), grouped: a part
-    joins the first group whose leader's outline is within ``tol`` (mm) of its own."""
+def _rings_apart(a: np.ndarray, b: np.ndarray, step: float, limit: float = np.inf) -> float:
+    """An upper bound (mm) of the Hausdorff distance between the closed outlines ``a`` and
+    ``b``: both cut into pieces no longer than ``step``, the largest distance of a point of one
+    to the other, plus half the step (the distance is 1-Lipschitz along an edge)."""
+    ra, rb = shapely.linearrings(a), shapely.linearrings(b)
+    if max(shapely.distance(shapely.points(a), rb).max(),
+           shapely.distance(shapely.points(b), ra).max()) > limit:
+        return np.inf                                   # the vertices alone are too far
+    pa = shapely.get_coordinates(shapely.segmentize(ra, step))
+    pb = shapely.get_coordinates(shapely.segmentize(rb, step))
+    return float(max(shapely.distance(shapely.points(pa), rb).max(),
+                     shapely.distance(shapely.points(pb), ra).max())) + 0.5 * step
+
+
+def _match(part: Part, leader: Part, turns: list[float], tol: float, centroid: dict,
+           perimeter: dict):
+    """``(turn, offset, distance)`` placing the leader's shape on ``part`` (its centroid on the
+    part's, turned by one of ``turns``) within ``tol`` (mm), or None. ``centroid``,
+    ``perimeter``: of each part by id."""
+    if abs(part.area - leader.area) > perimeter[id(part)] * tol:
+        return None
+    for q in turns:
+        R = rotation_matrix(q)
+        d = centroid[id(part)] - R @ centroid[id(leader)]
+        dist = _rings_apart(part.outline, leader.outline @ R.T + d, max(0.25 * tol, 1e-6), tol)
+        if dist <= tol:
+            return q, (float(d[0]), float(d[1])), dist
+    return None
+
+
+def prepare_parts(flat_parts: list[dict], k: float, tol: float = GROUP_TOL_MM,
+                  turns: tuple = (0.0, 180.0)) -> list[Part]:
+    """The flat artifact's part records scaled by ``k`` (mm per model unit), grouped by shape:
+    a part joins the first group whose leader, turned by one of ``turns`` (degrees) and moved
+    centroid onto centroid, lies within ``tol`` (mm) of its outline (leaders of its own
+    congruence class tried first). The group's deviation (the largest of its members') is added
+    to the spacing of its no-fit polygons."""
     parts = []
     for rec in flat_parts:
         outline = k * np.asarray(rec["outline"], float)
@@ -134,21 +174,40 @@ def prepare_parts(flat_parts: list[dict], k: float, tol: float = GROUP_TOL_MM) -
             id=rec["id"], strip=int(rec["strip"]), cls=rec["class"], outline=outline,
             score=[k * np.asarray(s, float) for s in rec["score"]],
             label=k * np.asarray(rec["label"], float), geodesics=geod,
-            area=float(poly.area), pieces=pieces, deviation=simplified_by))
+            area=float(poly.area), pieces=pieces, deviation=simplified_by,
+            nfp_outline=simple))
+    polys = [Polygon(p.outline) for p in parts]
+    centroid = {id(p): np.asarray(g.centroid.coords[0]) for p, g in zip(parts, polys, strict=True)}
+    perimeter = {id(p): g.length for p, g in zip(parts, polys, strict=True)}
     leaders: list[int] = []
     for i, p in enumerate(parts):
-        for g, j in enumerate(leaders):
-            q = parts[j].outline
-            if q.shape == p.outline.shape:
-                dev = float(np.max(np.linalg.norm(q - p.outline, axis=1)))
-                if dev <= tol:
-                    p.group = g
-                    p.deviation = max(p.deviation, parts[j].deviation) + dev
-                    break
+        order = sorted(range(len(leaders)), key=lambda g: (parts[leaders[g]].cls != p.cls, g))
+        for g in order:
+            leader = parts[leaders[g]]
+            found = _match(p, leader, list(turns), tol, centroid, perimeter)
+            if found is not None:
+                q, d, dist = found
+                p.group, p.shape_rotation, p.shape_offset = g, q, d
+                p.deviation = leader.deviation + dist
+                break
         else:
             p.group = len(leaders)
             leaders.append(i)
+    worst: dict[int, float] = {}
+    for p in parts:
+        worst[p.group] = max(worst.get(p.group, 0.0), p.deviation)
+    for p in parts:
+        p.deviation = worst[p.group]
     return parts
+
+
+def shapes_of(parts: list[Part]) -> dict[int, tuple]:
+    """``group → (nfp_outline, pieces, deviation)`` of each group's leader (its first part)."""
+    out: dict[int, tuple] = {}
+    for p in parts:
+        if p.group not in out:
+            out[p.group] = (p.nfp_outline, p.pieces, p.deviation)
+    return out
 
 
 def disk(radius: float, sides: int = 32) -> np.ndarray:

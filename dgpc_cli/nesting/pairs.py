@@ -29,28 +29,54 @@ def _norm(deg: float) -> float:
 
 @dataclass(frozen=True)
 class Member:
-    """Part ``index`` inside a unit: rotation ``rotation`` then translation ``offset``."""
+    """Part ``index`` inside a unit: its group's shape turned by ``rotation`` then moved by
+    ``offset`` (in the unit's frame); the part ≈ R(shape_rotation) · shape + shape_offset."""
 
     index: int
     rotation: float
     offset: tuple[float, float]
+    shape_rotation: float = 0.0
+    shape_offset: tuple[float, float] = (0.0, 0.0)
 
 
 @dataclass
 class Unit:
-    """What the fill places: ``part`` (the geometry, possibly of two parts) and its members."""
+    """What the fill places: ``part`` (the true outline in the unit's frame, for the sheet's
+    margin, and the unit's allowed rotations), ``members``, ``key`` (units with one key have one
+    geometry: they share their no-fit polygons) and ``components``: ``(group, rotation,
+    offset)`` of each member's shape in the unit's frame."""
 
     part: Part
     members: list[Member]
+    key: tuple = ()
+    components: tuple = ()
+    core: int = 0          # a pair: its first member's outline is part.outline[:core]
 
 
 def _box_area(b) -> float:
     return (b[2] - b[0]) * (b[3] - b[1])
 
 
-def best_pair(part: Part, rotations: list[float], spacing: float):
-    """``(r1, r2, t, area)`` of the smallest-box pair of two copies of ``part``, or None."""
-    clearance = spacing + CLEARANCE_MM + 2 * part.deviation
+def _in_shape_frame(part: Part) -> np.ndarray:
+    """The part's true outline in its shape's frame: R(−q) · (outline − offset)."""
+    return (part.outline - np.asarray(part.shape_offset)) @ \
+        rotation_matrix(-part.shape_rotation).T
+
+
+def single(index: int, part: Part, rotations: list[float]) -> Unit:
+    """A part alone, in its shape's frame: its rotations turned by its shape rotation."""
+    q = part.shape_rotation
+    geom = Part(id=part.id, strip=part.strip, cls=part.cls, outline=_in_shape_frame(part),
+                score=[], label=part.label, geodesics=[], area=part.area, pieces=part.pieces,
+                group=part.group, deviation=part.deviation,
+                rotations=tuple(_norm(r + q) for r in (part.rotations or rotations)))
+    return Unit(geom, [Member(index, 0.0, (0.0, 0.0), q, tuple(part.shape_offset))],
+                key=("single", part.group), components=((part.group, 0.0, (0.0, 0.0)),))
+
+
+def best_pair(part: Part, rotations: list[float], spacing: float, nfps=None):
+    """``(r1, r2, t, area)`` of the smallest-box pair of two copies of ``part``'s shape (its
+    no-fit polygons from ``nfps``, an :class:`~dgpc_cli.nesting.nfp.NfpCache`), or None."""
     best = None
     for r1 in rotations:
         pa = part.outline @ rotation_matrix(r1).T
@@ -58,7 +84,11 @@ def best_pair(part: Part, rotations: list[float], spacing: float):
         for r2 in rotations:
             pb = part.outline @ rotation_matrix(r2).T
             bb = bounds(pb)
-            nfp = minkowski_nfp(part.pieces, r1, part.pieces, r2, clearance)
+            if nfps is not None:
+                nfp = nfps.get(part.group, r1, part.group, r2)
+            else:
+                clearance = spacing + CLEARANCE_MM + 2 * part.deviation
+                nfp = minkowski_nfp(part.pieces, r1, part.pieces, r2, clearance)
             t = shapely.get_coordinates(shapely.get_exterior_ring(
                 max(shapely.get_parts(nfp), key=lambda g: g.area)))
             lo = np.minimum(np.array(ba[:2]), np.array(bb[:2]) + t)
@@ -73,48 +103,57 @@ def best_pair(part: Part, rotations: list[float], spacing: float):
     return best[1], best[2], best[3], best[0]
 
 
-def make_units(parts: list[Part], rotations: list[float], spacing: float) -> list[Unit]:
-    """Units for the fill: pairs of congruent parts where pairing pays, else single parts."""
+def make_units(parts: list[Part], rotations: list[float], spacing: float,
+               nfps=None) -> list[Unit]:
+    """Units for the fill: pairs of congruent parts (one group) where pairing pays, else
+    single parts. ``nfps``: the no-fit polygon cache of the parts' shapes."""
     allowed = {_norm(r) for r in rotations}
     units: list[Unit] = []
     by_group: dict[int, list[int]] = {}
     for i, p in enumerate(parts):
         by_group.setdefault(p.group, []).append(i)
-    next_group = max(by_group) + 1 if by_group else 0
-    for _, idx in sorted(by_group.items()):
+    for g, idx in sorted(by_group.items()):
         idx = sorted(idx, key=lambda i: parts[i].id)
         lead = parts[idx[0]]
-        pair = best_pair(lead, rotations, spacing) if len(idx) >= 2 else None
-        single = min(_box_area(bounds(lead.outline @ rotation_matrix(r).T)) for r in rotations)
-        unit_rots = ()
-        if pair is not None:
-            r1, r2, t, area = pair
-            unit_rots = tuple(r for r in rotations
-                              if _norm(r + r1) in allowed and _norm(r + r2) in allowed)
-        if pair is None or area > PAIR_GAIN * 2 * single or not unit_rots:
-            units += [Unit(parts[i], [Member(i, 0.0, (0.0, 0.0))]) for i in idx]
+        shape = _in_shape_frame(lead)
+        turns = sorted({_norm(r + parts[i].shape_rotation) for i in idx for r in rotations})
+        pair = best_pair(Part(**{**lead.__dict__, "outline": shape}), turns, spacing, nfps) \
+            if len(idx) >= 2 else None
+        single_box = min(_box_area(bounds(shape @ rotation_matrix(r).T)) for r in turns)
+        if pair is None or pair[3] > PAIR_GAIN * 2 * single_box:
+            units += [single(i, parts[i], rotations) for i in idx]
             continue
+        r1, r2, t, _ = pair
         R1, R2 = rotation_matrix(r1), rotation_matrix(r2)
+        leftover = list(idx[2 * (len(idx) // 2):])
         for a, b in zip(idx[0::2], idx[1::2], strict=False):
             pa, pb = parts[a], parts[b]
+            qa, qb = pa.shape_rotation, pb.shape_rotation
+            unit_rots = tuple(r for r in turns if _norm(r + r1 - qa) in allowed
+                              and _norm(r + r2 - qb) in allowed)
+            if not unit_rots:
+                leftover += [a, b]
+                continue
             geom = Part(
                 id=pa.id, strip=pa.strip, cls=pa.cls,
-                outline=np.concatenate([pa.outline @ R1.T, pb.outline @ R2.T + t]),
+                outline=np.concatenate([_in_shape_frame(pa) @ R1.T,
+                                        _in_shape_frame(pb) @ R2.T + t]),
                 score=[], label=pa.label, geodesics=[], area=pa.area + pb.area,
-                pieces=np.concatenate([pa.pieces @ R1.T, pb.pieces @ R2.T + t]),
-                group=next_group, deviation=max(pa.deviation, pb.deviation),
-                rotations=unit_rots)
-            units.append(Unit(geom, [Member(a, r1, (0.0, 0.0)), Member(b, r2, t)]))
-        if len(idx) % 2:
-            units.append(Unit(parts[idx[-1]], [Member(idx[-1], 0.0, (0.0, 0.0))]))
-        next_group += 1
+                pieces=lead.pieces, group=g, deviation=lead.deviation, rotations=unit_rots)
+            units.append(Unit(geom, [Member(a, r1, (0.0, 0.0), qa, tuple(pa.shape_offset)),
+                                     Member(b, r2, t, qb, tuple(pb.shape_offset))],
+                              key=("pair", g), components=((g, r1, (0.0, 0.0)), (g, r2, t)),
+                              core=len(pa.outline)))
+        units += [single(i, parts[i], rotations) for i in sorted(leftover)]
     return units
 
 
 def expand(member: Member, rotation: float, translation, rotations: list[float]):
-    """The member's own placement from its unit's ``rotation`` and ``translation``: the
-    rotation as one of the allowed values, the translation ``R(rotation)·offset + T``."""
-    total = _norm(rotation + member.rotation)
+    """The member part's own placement from its unit's ``rotation`` and ``translation``: the
+    rotation ``rotation + member.rotation − shape_rotation`` as one of the allowed values, the
+    translation ``R(rotation)·offset + T − R(part rotation)·shape_offset``."""
+    total = _norm(rotation + member.rotation - member.shape_rotation)
     rot = next((r for r in rotations if _norm(r) == total), total)
-    t = rotation_matrix(rotation) @ np.asarray(member.offset) + np.asarray(translation)
+    t = (rotation_matrix(rotation) @ np.asarray(member.offset) + np.asarray(translation)
+         - rotation_matrix(total) @ np.asarray(member.shape_offset))
     return float(rot), (float(t[0]), float(t[1]))

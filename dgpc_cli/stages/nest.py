@@ -16,7 +16,9 @@ when its time budget is not what stops it. Either result is checked independentl
 from __future__ import annotations
 
 import logging
+import re
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import shapely
@@ -175,25 +177,74 @@ def nest_parts(flat_parts: list[dict], sheet: Sheet, rotations: list[float], *,
     overall = float(area.sum() / (n * sheet.width * sheet.height))
     log.info("%d parts on %d sheets, utilization %.1f %% overall", len(parts), n,
              100 * overall)
+    warning = scale_warning(parts, util, units, scale)
+    if warning:
+        log.warning("%s", warning)
     return NestResult(parts, placements, sheet, list(rotations), util, overall, info)
 
 
+#: Implausible scale (issue "no silent unit traps"): a part shorter than this (mm) ...
+SMALL_PART_MM = 10.0
+#: ... or every sheet used less than this fraction.
+LOW_UTILIZATION = 0.01
+
+
+def scale_warning(parts: list[Part], utilization: list[float], units: str,
+                  scale: float) -> str | None:
+    """One line naming an implausible scale (a part under :data:`SMALL_PART_MM`, even the
+    fullest sheet less than :data:`LOW_UTILIZATION` used) and its likely fix, or None."""
+    longest = [max(np.ptp(p.outline, axis=0)) for p in parts]
+    small = min(range(len(parts)), key=lambda i: longest[i])
+    low = max(range(len(utilization)), key=lambda s: utilization[s])
+    if longest[small] >= SMALL_PART_MM and utilization[low] >= LOW_UTILIZATION:
+        return None
+    what = (f"part {parts[small].id} is {longest[small]:.3g} mm long"
+            if longest[small] < SMALL_PART_MM else
+            f"sheet {sheet_id(low)} is {100 * utilization[low]:.2g} % used")
+    return (f"implausible scale: {what} (parts in {units}, scale {scale:g}); if the net "
+            "was meant in metres, make it with `init --units m` (or give --scale)")
+
+
 def sheet_drawings(result: NestResult, *, border: bool = False, label_style: str = "text"
-                   ) -> list[tuple[bytes, bytes, bytes, list]]:
-    """Per sheet ``(dxf, svg, png, labels)``: the bytes of its DXF (with the sheet's
-    ``border`` or not, labels in ``label_style``) and previews (titled, the sheet outlined),
-    and the labels in placement order (:class:`~dgpc_cli.nesting.labels.Label`)."""
+                   ) -> list[tuple[bytes, list]]:
+    """Per sheet ``(dxf, labels)``: the bytes of its DXF (with the sheet's ``border`` or not,
+    labels in ``label_style``) and the labels in placement order
+    (:class:`~dgpc_cli.nesting.labels.Label`). The cut files come first: their previews
+    (:func:`sheet_previews`) are drawn after every DXF, or not at all (``--no-preview``)."""
     out = []
     W, H = result.sheet.width, result.sheet.height
     for s in range(result.sheet_count):
         placed = [placed_part(result.parts[p.index], p.rotation, p.translation)
                   for p in result.placements if p.sheet == s]
         drawing, labels = sheet_drawing(W, H, placed, border=border, label_style=label_style)
-        dxf = drawing.to_bytes(f"sheet {sheet_id(s)}")
-        title = (f"{sheet_id(s)} ({s + 1} of {result.sheet_count}): sheet {W:g} × {H:g} mm, "
-                 f"{len(placed)} parts, {100 * result.utilization[s]:.1f} % used")
-        out.append((dxf, *previews(dxf, title=title, frame=(W, H)), labels))
+        out.append((drawing.to_bytes(f"sheet {sheet_id(s)}"), labels))
     return out
+
+
+def sheet_previews(result: NestResult, s: int, dxf: bytes) -> tuple[bytes, bytes]:
+    """``(svg, png)`` previews of the DXF bytes of sheet ``s``: titled with the sheet, its size,
+    its parts and its use, the sheet outlined."""
+    W, H = result.sheet.width, result.sheet.height
+    count = sum(1 for p in result.placements if p.sheet == s)
+    title = (f"{sheet_id(s)} ({s + 1} of {result.sheet_count}): sheet {W:g} × {H:g} mm, "
+             f"{count} parts, {100 * result.utilization[s]:.1f} % used")
+    svg, png = previews(dxf, title=title, frame=(W, H))
+    return svg, png
+
+
+#: A sheet file of an earlier nesting (SHEETS.sheetNN.dxf/.svg/.png, SHEETS.moldmap.*).
+_SHEET_FILE = re.compile(r"\.(sheet\d{2,}\.(dxf|svg|png)|moldmap\.(dxf|png))$")
+
+
+def existing_sheet_files(stem) -> list[Path]:
+    """The sheet and mold-map files of an earlier nesting to ``stem`` (whatever their count):
+    checked before nesting, so that a run without --force fails at once."""
+    stem = Path(stem)
+    if not stem.parent.is_dir():
+        return []
+    name = stem.name
+    return sorted(p for p in stem.parent.iterdir()
+                  if p.name.startswith(name) and _SHEET_FILE.fullmatch(p.name[len(name):]))
 
 
 def sheet_id(s: int) -> str:
@@ -258,8 +309,9 @@ def mold_map(mold, scale: float) -> tuple[bytes, bytes]:
 
 
 def sheets_data(result: NestResult, labels: list[list], *, units: str, scale: float,
-                engine: str, time_limit: float, seed: int) -> dict:
-    """``data`` of the sheets artifact (without the file records)."""
+                engine: str, time_limit: float, seed: int, previews: bool = True) -> dict:
+    """``data`` of the sheets artifact (without the file records); ``previews``: whether the
+    sheets have SVG/PNG previews."""
     per_sheet = []
     for s in range(result.sheet_count):
         on = [p for p in result.placements if p.sheet == s]
@@ -269,7 +321,8 @@ def sheets_data(result: NestResult, labels: list[list], *, units: str, scale: fl
             "parts": sorted(result.parts[p.index].id for p in on),
             "utilization": result.utilization[s],
             "parts_area": float(sum(result.parts[p.index].area for p in on)),
-            "dxf": f"{key}_dxf", "svg": f"{key}_svg", "png": f"{key}_png"})
+            "dxf": f"{key}_dxf",
+            **({"svg": f"{key}_svg", "png": f"{key}_png"} if previews else {})})
     sh = result.sheet
     label_of = {}
     for s, sheet_labels in enumerate(labels):

@@ -420,6 +420,8 @@ def _sheets_page(json_path: Path) -> Page:
     count = len(data["sheets"])
     figs = []
     for i, sheet in enumerate(data["sheets"]):
+        if "png" not in sheet:                      # nest --no-preview
+            continue
         png = art.file(sheet["png"]).read_bytes()
         drawn = _dxf_layers(art.file(sheet["dxf"]))
         legend = _layer_legend(SHEET_LAYERS, {k: v for k, v in SHEET_LEGEND.items()
