@@ -25,8 +25,13 @@ def _axis(ctx, param, value):
 
 
 def _inspect_net(json_path: Path, axis=None, against=None) -> dict:
+    from dgpc_cli.io.units import same_units
+
     net = read_net(json_path)
     reference = read_net(against) if against is not None else None
+    if reference is not None:
+        same_units([(str(json_path), net.units), (str(artifact_paths(against)[0]),
+                                                  reference.units)], source="--against")
     return inspect_net(net, json_path, axis=axis, against=reference)
 
 
@@ -109,5 +114,9 @@ def inspect(stem, axis, against):
     kind = artifact_kind(json_path)
     if kind not in INSPECTORS:
         raise DgpcError(f"inspecting '{kind}' artifacts is not supported yet", source=json_path)
+    for name, value in (("--axis", axis), ("--against", against)):
+        if value is not None and kind != "net":
+            raise click.UsageError(f"{name} applies to a net; {json_path} is a {kind} "
+                                   "artifact")
     metrics = INSPECTORS[kind](json_path, axis=axis, against=against)
     click.echo(dumps_json(metrics).decode(), nl=False)
