@@ -114,9 +114,9 @@ patches = ["b"]
 @pytest.mark.parametrize("tables, message", [
     ("[patches." + "a" * 300 + "]\n", "at most 64"),
     ('[patches."a\\n"]\n', "is not a name"),
-    ('[patches."batch.json"]\n', "is reserved"),
-    ('[patches."Index.HTML"]\n', "is reserved"),
-    ("[patches.nul]\n", "is reserved"),
+    ('[patches."batch.json"]\n', "reserved"),
+    ('[patches."Index.HTML"]\n', "reserved"),
+    ("[patches.nul]\n", "reserved"),
     ('[patches."net.json"]\n', "ends like a file name"),
     ("[patches.A]\n[patches.a]\n", "differing only in case"),
     ('[patches.a]\n[molds.x]\npatches = ["a"]\n[molds."x.json"]\npatches = ["a"]\n',
@@ -227,9 +227,13 @@ def test_unusable_addresses_are_one_line_and_write_nothing(project, address, mes
     assert not out.exists()
 
 
-def test_workers_beyond_the_cores_are_refused(project):
+def test_workers_beyond_the_cores_are_capped_in_one_line(project):
+    from dgpc_cli.stages.batch import machine_cores
+
     out = project.parent / "out"
-    result = run_batch(project, "-o", out, "--workers", 100000)
-    assert result.exit_code == 2 and "--workers" in result.stderr
+    result = run_batch(project, "-o", out, "--workers", 100000, "-q")
+    assert result.exit_code == 0, result.stderr
+    assert result.stderr.count("\n") == 1 and "--workers 100000" in result.stderr
     assert "cores" in result.stderr
-    assert not out.exists()
+    doc = json.loads((out / "batch.json").read_text())
+    assert doc["this_run"]["cluster"]["workers"] == machine_cores()

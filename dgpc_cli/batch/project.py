@@ -153,8 +153,9 @@ class _Reader:
             self.fail(key, f"a name of {len(value)} characters; at most {NAME_MAX}")
         low = value.lower()
         if low in (SHARED, *BATCH_FILES) or DEVICES.fullmatch(low):
-            self.fail(key, f"{value!r} is reserved (the batch's {SHARED}/, "
-                           f"{', '.join(BATCH_FILES)}, or a device name on Windows)")
+            self.fail(key, f"{value!r} is not a name for a patch or a mold: reserved (the "
+                           f"batch's {SHARED}/, {', '.join(BATCH_FILES)}, or a device name on "
+                           "Windows)")
         if low.endswith((".", ".json", ".obj")):
             self.fail(key, f"{value!r} ends like a file name (.json, .obj) or with '.'")
         return value

@@ -67,7 +67,8 @@ def _progress_line(p) -> str:
               help="A running Dask scheduler (tcp://HOST:8786) instead of a local cluster; "
                    "its workers must see the project's files and DIR at the same paths.")
 @click.option("--workers", type=click.IntRange(min=1),
-              help="Worker processes of the local cluster [default: the number of cores].")
+              help="Worker processes of the local cluster, at most one per core [default: "
+                   "the number of cores].")
 @click.option("--timeout", type=click.FloatRange(min=0, min_open=True), default=20.0,
               show_default=True, metavar="SECONDS",
               help="How long the scheduler at --scheduler has to answer, and then to have a "
@@ -114,9 +115,10 @@ def batch(ctx, project, out, scheduler, workers, timeout, quiet):
     from dgpc_cli.stages.batch import connect, machine_cores, run_batch
 
     if workers is not None and workers > machine_cores():
-        raise click.BadParameter(f"{workers} worker processes, but this machine has "
-                                 f"{machine_cores()} cores; give at most {machine_cores()}, or "
-                                 "--scheduler for a cluster's workers", param_hint="'--workers'")
+        log.warning("--workers %d: this machine has %d cores; running %d worker processes "
+                    "(--scheduler for a cluster's workers)", workers, machine_cores(),
+                    machine_cores())
+        workers = machine_cores()
     show = not quiet and ctx.obj.get("verbosity", 0) >= 0
     proj = load_project(project, stage_specs())
     if out.exists() and not out.is_dir():
