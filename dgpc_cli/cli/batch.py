@@ -67,8 +67,7 @@ def _progress_line(p) -> str:
               help="A running Dask scheduler (tcp://HOST:8786) instead of a local cluster; "
                    "its workers must see the project's files and DIR at the same paths.")
 @click.option("--workers", type=click.IntRange(min=1),
-              help="Worker processes of the local cluster, at most one per core [default: "
-                   "the number of cores].")
+              help="Worker processes of the local cluster [default: the number of cores].")
 @click.option("--timeout", type=click.FloatRange(min=0, min_open=True), default=20.0,
               show_default=True, metavar="SECONDS",
               help="How long the scheduler at --scheduler has to answer, and then to have a "
