@@ -11,10 +11,11 @@ and what Dask's scheduling costs per task.
   submissions, the transfers and the worker's bookkeeping —, and the round trip of an empty
   Dask task (submit, run, result) on a 1-worker local cluster, one after another.
 
-Then a sweep at facade scale: ``--sweep N`` generated patches (the Gehry-type profile at 9×7,
-each with its own twist, init and one strip of planarize-strips: 2N tasks) on a local cluster
-of ``--workers`` processes from an empty folder, and a rerun that must recompute nothing:
-wall time, scheduler overhead per task (workers × batch − tasks) / tasks, tasks run again.
+Then a sweep at facade scale: ``--sweep N`` generated patches (the Gehry-type profile at
+9×7, each with its own twist, 0.05° to N × 0.05°; init and one strip of planarize-strips:
+2N tasks) on a local cluster of ``--workers`` processes from an empty folder, and a rerun
+that must recompute nothing: wall time, scheduler overhead per task (workers × batch −
+tasks) / tasks, tasks run again.
 
     python benchmarks/batch_bench.py [--project samples/projects/gehry-sweep.toml]
         [--sweep 100] [--workers 2]
@@ -51,14 +52,14 @@ def run_batch(project: Path, out: Path, workers: int) -> dict:
 
 
 def sweep_project(folder: Path, n: int) -> Path:
-    """A project of ``n`` patches in ``folder``: the Gehry-type profile at 9×7, twists 0.1° to
-    ``n`` × 0.1°, init and one strip of planarize-strips each, no figures."""
+    """A project of ``n`` patches in ``folder``: the Gehry-type profile at 9×7, twists 0.05° to
+    ``n`` × 0.05°, init and one strip of planarize-strips each, no figures."""
     profile = (ROOT / "samples" / "profiles" / "gehry.csv").as_posix()
     lines = ["[project]", "report = false", "", "[defaults.init]", 'surface = "revolution"',
              f'profile = "{profile}"', "rows = 9", "cols = 7", "span = 90", 'units = "m"', "",
              "[defaults.planarize-strips]", 'strips = "0:0"', ""]
     for k in range(1, n + 1):
-        lines += [f"[patches.twist-{k:03d}.init]", f"twist = {0.1 * k:.1f}", ""]
+        lines += [f"[patches.twist-{k:03d}.init]", f"twist = {0.05 * k:.2f}", ""]
     path = folder / "sweep.toml"
     path.write_text("\n".join(lines), encoding="utf-8")
     return path
