@@ -11,7 +11,14 @@ and what Dask's scheduling costs per task.
   submissions, the transfers and the worker's bookkeeping —, and the round trip of an empty
   Dask task (submit, run, result) on a 1-worker local cluster, one after another.
 
+Then a sweep at facade scale: ``--sweep N`` generated patches (the Gehry-type profile at
+9×7, each with its own twist, 0.05° to N × 0.05°; init and one strip of planarize-strips:
+2N tasks) on a local cluster of ``--workers`` processes from an empty folder, and a rerun
+that must recompute nothing: wall time, scheduler overhead per task (workers × batch −
+tasks) / tasks, tasks run again.
+
     python benchmarks/batch_bench.py [--project samples/projects/gehry-sweep.toml]
+        [--sweep 100] [--workers 2]
 """
 
 from __future__ import annotations
@@ -44,6 +51,34 @@ def run_batch(project: Path, out: Path, workers: int) -> dict:
             "status": doc["status"]}
 
 
+def sweep_project(folder: Path, n: int) -> Path:
+    """A project of ``n`` patches in ``folder``: the Gehry-type profile at 9×7, twists 0.05° to
+    ``n`` × 0.05°, init and one strip of planarize-strips each, no figures."""
+    profile = (ROOT / "samples" / "profiles" / "gehry.csv").as_posix()
+    lines = ["[project]", "report = false", "", "[defaults.init]", 'surface = "revolution"',
+             f'profile = "{profile}"', "rows = 9", "cols = 7", "span = 90", 'units = "m"', "",
+             "[defaults.planarize-strips]", 'strips = "0:0"', ""]
+    for k in range(1, n + 1):
+        lines += [f"[patches.twist-{k:03d}.init]", f"twist = {0.05 * k:.2f}", ""]
+    path = folder / "sweep.toml"
+    path.write_text("\n".join(lines), encoding="utf-8")
+    return path
+
+
+def sweep(n: int, workers: int) -> None:
+    """The ``n``-patch sweep from an empty folder and its rerun; prints the figures."""
+    with tempfile.TemporaryDirectory(prefix="dgpc-batch-sweep-") as tmp:
+        project = sweep_project(Path(tmp), n)
+        first = run_batch(project, Path(tmp) / "out", workers)
+        again = run_batch(project, Path(tmp) / "out", workers)
+    overhead = (workers * first["batch"] - first["tasks"]) / first["n"]
+    print(f"sweep: {n} patches, {first['n']} tasks on {workers} local workers: wall "
+          f"{first['wall']:.1f} s, batch {first['batch']:.1f} s, tasks {first['tasks']:.1f} s, "
+          f"overhead per task {1000 * overhead:.0f} ms ({first['status']})")
+    print(f"sweep: rerun recomputed {again['n']} tasks, wall {again['wall']:.1f} s, batch "
+          f"{again['batch']:.2f} s")
+
+
 def _noop(x):
     return x
 
@@ -66,7 +101,14 @@ def round_trip(n: int = 100) -> float:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--project", type=Path, default=Path("samples/projects/gehry-sweep.toml"))
+    ap.add_argument("--sweep", type=int, default=100, metavar="N",
+                    help="patches of the generated sweep (0: none)")
+    ap.add_argument("--workers", type=int, default=2, help="local workers of the sweep")
+    ap.add_argument("--sweep-only", action="store_true", help="only the generated sweep")
     args = ap.parse_args(argv)
+    if args.sweep_only:
+        sweep(args.sweep, args.workers)
+        return 0
     print(f"batch: {args.project} from an empty output folder, local cluster")
     print(f"{'workers':>8} {'wall s':>8} {'batch s':>8} {'tasks s':>8} {'tasks':>6}  status")
     results = {}
@@ -82,6 +124,8 @@ def main(argv=None) -> int:
     overhead = (one["batch"] - one["tasks"]) / one["n"]
     print(f"batch: overhead per task (1 worker, batch − tasks) = {1000 * overhead:.0f} ms; "
           f"empty Dask task round trip = {1000 * round_trip():.1f} ms")
+    if args.sweep:
+        sweep(args.sweep, args.workers)
     return 0
 
 

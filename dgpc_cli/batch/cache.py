@@ -1,12 +1,11 @@
 """Which tasks a rerun can skip: the fingerprint of a task is the sha256 of its command line,
 the dgpc version and the sha256 of each of its input files; a task is reused when the last
 run's ``batch.json`` records the same fingerprint for it, a result whose artifacts were
-written (exit 0, or 3: a tolerance missed), and every output file still has the sha256
-recorded then. A failed task always runs again."""
+written (exit 0, or 3: a tolerance missed), and every file it wrote (by the exact names its
+artifact listed) still has the sha256 recorded then. A failed task always runs again."""
 
 from __future__ import annotations
 
-import glob
 import json
 import os
 from pathlib import Path
@@ -35,14 +34,9 @@ def fingerprint(task: Task, base: Path) -> str:
     return sha256_bytes(json.dumps(doc, sort_keys=True).encode("utf-8"))
 
 
-def output_files(patterns: list[str], out: Path) -> list[Path]:
-    """The files (relative to the output folder ``out``) that ``patterns`` match now."""
-    return sorted(Path(p) for pattern in patterns for p in glob.glob(pattern, root_dir=out))
-
-
-def hash_outputs(patterns: list[str], out: Path) -> dict[str, str]:
-    """Path relative to ``out`` → sha256 of every file ``patterns`` match."""
-    return {p.as_posix(): file_sha256(out / p) for p in output_files(patterns, out)}
+def hash_outputs(names, out: Path) -> dict[str, str | None]:
+    """Path relative to ``out`` → sha256 of each of the files ``names`` (None: unreadable)."""
+    return {name: file_sha256(Path(out) / name) for name in sorted(names)}
 
 
 def reusable(previous: dict | None, fp: str, task: Task, out: Path) -> bool:
@@ -53,7 +47,9 @@ def reusable(previous: dict | None, fp: str, task: Task, out: Path) -> bool:
     if previous.get("exit_code") not in REUSABLE:
         return False
     recorded = previous.get("outputs") or {}
-    return bool(recorded) and recorded == hash_outputs(task.outputs, out)
+    if not isinstance(recorded, dict) or task.artifact not in recorded:
+        return False
+    return recorded == hash_outputs(recorded, out)
 
 
 def load_previous(path: Path) -> dict[str, dict]:
@@ -65,6 +61,6 @@ def load_previous(path: Path) -> dict[str, dict]:
         times = doc.get("this_run", {}).get("tasks", {})
         for tid, rec in tasks.items():
             rec["wall_time_s"] = float(times.get(tid, {}).get("wall_time_s", 0.0))
-    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+    except (OSError, ValueError, KeyError, TypeError, AttributeError, RecursionError):
         return {}
     return tasks

@@ -20,6 +20,8 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from dgpc_cli.io.artifact import artifact_paths
+
 from .project import SHARED, Options, Project
 
 #: The artifact stem each stage of a patch writes in the patch's folder.
@@ -33,17 +35,16 @@ class Task:
     """One dgpc command: ``dgpc COMMAND ARGS...`` run from ``base``.
 
     ``inputs`` are the files whose sha256 (with the command line) decides whether the task
-    must run again; ``outputs`` the glob patterns (relative to the output folder) of every
-    file it
-    writes; ``artifact`` its main output (an artifact's JSON, a report's index) relative to
-    the output folder; ``group`` the patch it belongs to, or ``shared``.
+    must run again; ``artifact`` its main output (an artifact's JSON, a report's index)
+    relative to the output folder: the files it wrote are those this one lists (never a
+    pattern, which would take a neighbour's or a user's files for its own);
+    ``group`` the patch it belongs to, or ``shared``.
     """
 
     id: str
     command: str
     args: list[str]
     inputs: list[Path]
-    outputs: list[str]
     artifact: str
     group: str
     deps: list[str] = field(default_factory=list)
@@ -82,6 +83,11 @@ def _number(x) -> str:
     return repr(x) if isinstance(x, float) else str(x)
 
 
+def _json(stem: Path) -> Path:
+    """``STEM.json`` (a stem's name may hold dots: mold ``m.x``)."""
+    return artifact_paths(stem)[0]
+
+
 def _inputs(options: Options) -> list[Path]:
     return [f for files in options.files.values() for f in files]
 
@@ -101,16 +107,14 @@ class _Builder:
         args = ([self.rel(s) for s in sources] + _option_args(options, self.base, positional)
                 + list(extra or []) + ["-o", self.rel(stem), "--force"])
         task = Task(tid, command, args,
-                    inputs=[s.with_suffix(".json") for s in sources] + _inputs(options),
-                    outputs=[_rel(stem.parent, self.out) + f"/{stem.name}.*"],
-                    artifact=_rel(stem.with_suffix(".json"), self.out), group=group, deps=deps)
+                    inputs=[_json(s) for s in sources] + _inputs(options),
+                    artifact=_rel(_json(stem), self.out), group=group, deps=deps)
         self.tasks[tid] = task
         return task
 
     def report_task(self, tid: str, group: str, stem: Path, prefix: Path, dep: str) -> Task:
         task = Task(tid, "report", [self.rel(stem), "-o", self.rel(prefix), "--force"],
-                    inputs=[stem.with_suffix(".json")],
-                    outputs=[_rel(prefix.parent, self.out) + f"/{prefix.name}-*"],
+                    inputs=[_json(stem)],
                     artifact=_rel(prefix.parent / f"{prefix.name}-index.html", self.out),
                     group=group, deps=[dep])
         self.tasks[tid] = task
@@ -164,7 +168,7 @@ def build_tasks(project: Project, out: str | Path, base: str | Path) -> dict[str
             mtid, mstem = molds[nest.mold]
             deps.append(mtid)
             extra = ["--mold", b.rel(mstem)]
-            inputs = [mstem.with_suffix(".json")]
+            inputs = [_json(mstem)]
         task = b.artifact_task(f"{SHARED}/nest", "nest", SHARED, sources, nest.options, stem,
                                deps, extra=extra)
         task.inputs += inputs

@@ -52,7 +52,14 @@ RESERVED = {"output": "the batch names every output",
             "reference-out": "a batch writes only into its output folder"}
 #: Folder of the shared stages' artifacts in the output folder (no patch may be called so).
 SHARED = "shared"
-NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]*$")
+#: The batch's own files in the output folder (no patch may be called so).
+BATCH_FILES = ("batch.json", "index.html")
+NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9._-]*")
+#: Longest name: a patch's folder, a mold's files (``mold-NAME-report-index.html``) and their
+#: hidden temporary names stay well within a file name's 255 bytes.
+NAME_MAX = 64
+#: Names a Windows file system keeps for devices (with any extension), compared in lower case.
+DEVICES = re.compile(r"(con|prn|aux|nul|com[0-9]|lpt[0-9])(\..*)?")
 
 
 class ProjectError(DgpcError):
@@ -111,10 +118,14 @@ def load_project(path: str | Path, specs: dict[str, StageSpec]) -> Project:
     """Read and check the project file ``path``; ``specs`` describes every stage's command."""
     path = Path(path)
     try:
-        with open(path, "rb") as fh:
-            doc = tomllib.load(fh)
+        text = path.read_bytes().decode("utf-8")
+        doc = tomllib.loads(text)
     except OSError as e:
         raise ProjectError(f"cannot read: {e.strerror or e}", source=path) from None
+    except UnicodeDecodeError as e:
+        line = data_line(path.read_bytes(), e.start)
+        raise ProjectError(f"not UTF-8 text: byte 0x{e.object[e.start]:02x} at line {line} "
+                           "(save the file as UTF-8)", source=path) from None
     except tomllib.TOMLDecodeError as e:
         raise ProjectError(f"not valid TOML: {e}", source=path) from None
     return _Reader(path, specs).project(doc)
@@ -134,9 +145,19 @@ class _Reader:
         return value
 
     def name(self, value, key: str) -> str:
-        if not isinstance(value, str) or not NAME.match(value) or value == SHARED:
+        """A patch's or a mold's name: a file name on every system, none of the batch's own."""
+        if not isinstance(value, str) or not NAME.fullmatch(value):
             self.fail(key, f"{value!r} is not a name: letters, digits, '.', '_' and '-', "
-                           f"not starting with a sign, not {SHARED!r}")
+                           "starting with a letter or digit")
+        if len(value) > NAME_MAX:
+            self.fail(key, f"a name of {len(value)} characters; at most {NAME_MAX}")
+        low = value.lower()
+        if low in (SHARED, *BATCH_FILES) or DEVICES.fullmatch(low):
+            self.fail(key, f"{value!r} is not a name for a patch or a mold: reserved (the "
+                           f"batch's {SHARED}/, {', '.join(BATCH_FILES)}, or a device name on "
+                           "Windows)")
+        if low.endswith((".", ".json", ".obj")):
+            self.fail(key, f"{value!r} ends like a file name (.json, .obj) or with '.'")
         return value
 
     def project(self, doc: dict) -> Project:
@@ -164,7 +185,28 @@ class _Reader:
         nest = None
         if "nest" in doc:
             nest = self.nest(self.table(doc["nest"], "nest"), patches, molds)
+        self.collisions(patches, molds, report)
         return Project(self.path, patches, molds, nest, report)
+
+    def collisions(self, patches: dict, molds: dict, report: bool) -> None:
+        """No two patches share a folder and no two shared stages a stem, on a file system
+        that ignores case as well (``A`` and ``a``; mold ``x-report`` and mold ``x``'s
+        report)."""
+        seen: dict[str, str] = {}
+        for name in patches:
+            other = seen.setdefault(name.lower(), f"patches.{name}")
+            if other != f"patches.{name}":
+                self.fail(f"patches.{name}", f"its folder collides with {other}'s (names "
+                                             "differing only in case)")
+        stems = {"sheets": "nest", **({"sheets-report": "nest's report"} if report else {})}
+        for name in molds:
+            for stem, what in [(f"mold-{name}", f"molds.{name}"),
+                               *([(f"mold-{name}-report", f"molds.{name}'s report")]
+                                 if report else [])]:
+                other = stems.setdefault(stem.lower(), what)
+                if other != what:
+                    self.fail(f"molds.{name}", f"its files ({SHARED}/{stem}) collide with "
+                                               f"those of {other}")
 
     def patch(self, name: str, body, defaults: dict) -> Patch:
         self.name(name, f"patches.{name}")
@@ -270,6 +312,11 @@ class _Reader:
         if kind not in ("path", "paths"):
             found = [p for p in found if p.is_file()]
         return found
+
+
+def data_line(data: bytes, offset: int) -> int:
+    """The line (from 1) of the byte at ``offset``."""
+    return data.count(b"\n", 0, offset) + 1
 
 
 def _type(value) -> str:

@@ -55,7 +55,7 @@ def artifact_metrics(path: Path, role: str) -> dict:
     """Key metrics of the artifact ``path`` (its role picks them), with its ``state``."""
     try:
         doc = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+    except (OSError, ValueError, RecursionError):
         return {}
     out = {name: _lookup(doc.get("metrics", {}), dotted)
            for name, dotted in KEY_METRICS.get(role, {}).items()}

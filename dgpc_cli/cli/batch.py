@@ -7,7 +7,6 @@ light): they are imported when the command runs.
 from __future__ import annotations
 
 import logging
-import os
 from pathlib import Path
 
 import click
@@ -58,29 +57,6 @@ def _progress_line(p) -> str:
             f"tasks, {_duration(p.elapsed_s)} elapsed, ETA {_duration(p.eta_s)}")
 
 
-def _client(scheduler: str | None, workers: int | None):
-    """A Dask client: of the scheduler at ``scheduler``, or of a new local cluster of
-    ``workers`` single-threaded worker processes on the loopback address (no dashboard)."""
-    from distributed import Client, LocalCluster
-
-    from dgpc_cli.errors import DgpcError
-
-    if scheduler is not None:
-        try:
-            client = Client(scheduler, timeout="20s")
-        except (OSError, TimeoutError, ValueError) as err:
-            reason = " ".join(str(err).split()) or type(err).__name__
-            raise DgpcError(f"cannot connect to the Dask scheduler: {reason}",
-                            source="--scheduler") from None
-        return client, None, {"scheduler": scheduler,
-                              "workers": len(client.scheduler_info()["workers"])}
-    from dgpc_cli.batch.cluster import local_cluster_options
-
-    n = workers or os.cpu_count() or 1
-    cluster = LocalCluster(**local_cluster_options(n))
-    return Client(cluster), cluster, {"scheduler": "local", "workers": n}
-
-
 @click.command(short_help="Run a project of many patches (a facade, a sweep) on Dask.")
 @click.argument("project", type=click.Path(exists=True, dir_okay=False, path_type=Path))
 @click.option("-o", "--output", "out", required=True,
@@ -92,9 +68,13 @@ def _client(scheduler: str | None, workers: int | None):
                    "its workers must see the project's files and DIR at the same paths.")
 @click.option("--workers", type=click.IntRange(min=1),
               help="Worker processes of the local cluster [default: the number of cores].")
+@click.option("--timeout", type=click.FloatRange(min=0, min_open=True), default=20.0,
+              show_default=True, metavar="SECONDS",
+              help="How long the scheduler at --scheduler has to answer, and then to have a "
+                   "worker.")
 @click.option("-q", "--quiet", is_flag=True, help="No progress on stderr (as `dgpc -q`).")
 @click.pass_context
-def batch(ctx, project, out, scheduler, workers, quiet):
+def batch(ctx, project, out, scheduler, workers, timeout, quiet):
     """Run every patch of the project file PROJECT (TOML) and then its shared stages (molds,
     one nesting of all parts) with Dask: a local cluster by default, or the scheduler at
     --scheduler. Each task is the dgpc command a user would type, run from this folder, and
@@ -131,13 +111,17 @@ def batch(ctx, project, out, scheduler, workers, quiet):
     from dgpc_cli.batch.summary import batch_doc, write_summary
     from dgpc_cli.cli.batch_tasks import run_task
     from dgpc_cli.errors import DgpcError, NotConverged
-    from dgpc_cli.stages.batch import run_batch
+    from dgpc_cli.stages.batch import connect, machine_cores, run_batch
 
+    if workers is not None and workers > machine_cores():
+        log.warning("--workers %d: this machine has %d cores; running %d worker processes "
+                    "(--scheduler for a cluster's workers)", workers, machine_cores(),
+                    machine_cores())
+        workers = machine_cores()
     show = not quiet and ctx.obj.get("verbosity", 0) >= 0
     proj = load_project(project, stage_specs())
     if out.exists() and not out.is_dir():
         raise DgpcError("is not a folder", source=out)
-    out.mkdir(parents=True, exist_ok=True)
     base = Path.cwd()
     tasks = build_tasks(proj, out, base)
 
@@ -145,8 +129,9 @@ def batch(ctx, project, out, scheduler, workers, quiet):
         if show:
             click.echo(_progress_line(p), err=True)
 
-    client, cluster, info = _client(scheduler, workers)
+    client, cluster, info = connect(scheduler, workers, timeout)
     try:
+        out.mkdir(parents=True, exist_ok=True)
         if show:
             where = (f"the scheduler at {scheduler}" if cluster is None
                      else "a local cluster")

@@ -24,8 +24,9 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.batch.cache import hash_outputs, output_files
+from dgpc_cli.batch.cache import hash_outputs
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.artifact import listed_files
 
 _LOCK = threading.Lock()
 
@@ -66,11 +67,24 @@ def invoke(command: str, args: list[str]) -> tuple[int, str]:
     return 0, ""
 
 
+def written_files(command: str, artifact: Path) -> list[Path]:
+    """The files a task wrote, by the names its main output lists: an artifact's JSON and
+    the files it lists (``data.obj``, ``data.files`` ...), a report's index and the figures
+    it links. Nothing else in the folder (a neighbour's files, a user's notes) is counted."""
+    if command == "report":
+        from dgpc_cli.stages.report import previous_report_files
+
+        prefix = artifact.parent / artifact.name[: -len("-index.html")]
+        return [artifact, *previous_report_files(prefix)]
+    return [artifact, *listed_files(artifact)]
+
+
 def run_task(spec: dict) -> dict:
     """Run the task ``spec`` (``command``, ``args``, ``cwd``: the folder the batch runs from,
-    ``out``: the output folder, ``outputs``: glob patterns of its files there) and return
-    ``exit_code``, ``message``, ``warnings``, ``outputs`` (path → sha256) and
-    ``wall_time_s``."""
+    ``out``: the output folder, ``artifact``: its main output there) and return
+    ``exit_code``, ``message``, ``warnings``, ``outputs`` (path → sha256 of each file it
+    wrote) and ``wall_time_s``. The files of an earlier run are left to the command, which
+    replaces them whole or not at all (``--force``)."""
     with _LOCK:
         start = time.perf_counter()
         here = os.getcwd()
@@ -80,16 +94,16 @@ def run_task(spec: dict) -> dict:
         try:
             os.chdir(spec["cwd"])
             out = Path(spec["out"])
-            for path in output_files(spec["outputs"], out):     # stale files of a last run
-                (out / path).unlink()
-            for pattern in spec["outputs"]:
-                (out / pattern).parent.mkdir(parents=True, exist_ok=True)
+            artifact = out / spec["artifact"]
+            artifact.parent.mkdir(parents=True, exist_ok=True)
             logger.handlers[:] = [collect]
             logger.setLevel(logging.WARNING)
             logger.propagate = False
             with redirect_stdout(io.StringIO()), redirect_stderr(io.StringIO()):
                 code, message = invoke(spec["command"], spec["args"])
-            outputs = hash_outputs(spec["outputs"], out) if code in (0, 3) else {}
+            outputs = {} if code not in (0, 3) else hash_outputs(
+                [Path(os.path.relpath(p, out)).as_posix()
+                 for p in written_files(spec["command"], artifact)], out)
         finally:
             logger.handlers[:] = saved[0]
             logger.setLevel(saved[1])

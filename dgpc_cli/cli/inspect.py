@@ -26,8 +26,13 @@ def _axis(ctx, param, value):
 
 
 def _inspect_net(json_path: Path, axis=None, against=None, coverage_tol=None) -> dict:
+    from dgpc_cli.io.units import same_units
+
     net = read_net(json_path)
     reference = read_net(against) if against is not None else None
+    if reference is not None:
+        same_units([(str(json_path), net.units), (str(artifact_paths(against)[0]),
+                                                  reference.units)], source="--against")
     return inspect_net(net, json_path, axis=axis, against=reference, coverage_tol=coverage_tol)
 
 
@@ -114,9 +119,11 @@ def inspect(stem, axis, against, coverage_tol):
     kind = artifact_kind(json_path)
     if kind not in INSPECTORS:
         raise DgpcError(f"inspecting '{kind}' artifacts is not supported yet", source=json_path)
-    if coverage_tol is not None and kind != "net":
-        raise click.BadParameter(f"applies to net artifacts only; {json_path} is a {kind}",
-                                 param_hint="'--coverage-tol'")
+    for name, value in (("--axis", axis), ("--against", against),
+                        ("--coverage-tol", coverage_tol)):
+        if value is not None and kind != "net":
+            raise click.UsageError(f"{name} applies to a net; {json_path} is a {kind} "
+                                   "artifact")
     metrics = INSPECTORS[kind](json_path, axis=axis, against=against,
                                **({} if coverage_tol is None else {"coverage_tol": coverage_tol}))
     click.echo(dumps_json(metrics).decode(), nl=False)

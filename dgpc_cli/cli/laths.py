@@ -9,7 +9,7 @@ import click
 import numpy as np
 
 from dgpc_cli.cli.length import LengthParam, length_help
-from dgpc_cli.cli.options import force_opt, format_opt
+from dgpc_cli.cli.options import check_writable, force_opt, format_opt
 from dgpc_cli.cli.output_path import OutputPath
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths, file_input
@@ -48,11 +48,12 @@ def laths(net_a, net_b, gap, output, force, fmt):
     """
     json_path, obj_path = artifact_paths(output)
     csv_path = json_path.with_suffix(".csv")
-    if not force:
-        for p in (json_path, obj_path, csv_path):
-            if p.exists():
-                raise DgpcError("already exists; use --force to overwrite", source=p)
+    check_writable(output, force, csv_path)
     a, b = read_net(net_a), read_net(net_b)
+    if artifact_paths(net_a)[0].resolve() == artifact_paths(net_b)[0].resolve() \
+            or np.array_equal(a.f, b.f):
+        raise DgpcError("is the same net as NET_A: its laths would lie on their own copies; "
+                        "give two transversal nets", source=artifact_paths(net_b)[0])
     require_sound_net(a.f, artifact_paths(net_a)[0])
     require_sound_net(b.f, artifact_paths(net_b)[0])
     units = same_units([(str(artifact_paths(net_a)[0]), a.units),

@@ -69,12 +69,45 @@ def check_units(given: str | None, actual: str, source) -> None:
                                  "set by `dgpc init --units`)", param_hint="'--expect-units'")
 
 
+def _written_by_inputs(value) -> set[Path]:
+    """The files an input path names: itself and, as an artifact stem, its JSON and OBJ."""
+    found = {Path(value).resolve()}
+    try:
+        found.update(p.resolve() for p in artifact_paths(value))
+    except DgpcError:
+        pass
+    return found
+
+
+def check_not_input(stem: Path, *extra: Path) -> None:
+    """Refuse (exit 1, with or without --force) an output that would overwrite one of the
+    command's own inputs: any path argument or option of the running command (an artifact
+    stem, a mesh, a handles file) that is ``STEM.json``, ``STEM.obj`` or one of ``extra``."""
+    ctx = click.get_current_context(silent=True)
+    if ctx is None:
+        return
+    outputs = {p.resolve() for p in (*artifact_paths(stem), *extra)}
+    for param in ctx.command.params:
+        if not isinstance(param.type, click.Path) or isinstance(param.type, OutputPath):
+            continue
+        value = ctx.params.get(param.name)
+        values = value if isinstance(value, (list, tuple)) else [value]
+        for item in values:
+            if isinstance(item, (str, Path)) and str(item) and \
+                    _written_by_inputs(item) & outputs:
+                name = (param.opts[0] if isinstance(param, click.Option)
+                        else param.human_readable_name)
+                raise DgpcError(f"is also an input ({name} {item}); write the output "
+                                "elsewhere (--force never overwrites an input)", source=stem)
+
+
 def check_writable(stem: Path, force: bool, *extra: Path) -> None:
-    """Fail early (before any work) when the output's folder is missing, or an output exists
-    and --force is not given."""
+    """Fail early (before any work) when the output's folder is missing, an output is one of
+    the command's inputs (:func:`check_not_input`), or exists and --force is not given."""
     parent = Path(stem).parent
     if not parent.is_dir():
         raise DgpcError("directory does not exist", source=parent)
+    check_not_input(stem, *extra)
     if force:
         return
     for path in (*artifact_paths(stem), *extra):

@@ -136,6 +136,16 @@ def listed_path(text: Any, json_path: str | Path, field: str) -> Path:
     return path
 
 
+def listed_file(text: Any, json_path: str | Path, field: str) -> Path:
+    """:func:`listed_path`, which must name a file (not a folder): the file an artifact lists
+    is read from where it says, never from another name."""
+    path = listed_path(text, json_path, field)
+    if path.is_dir():
+        raise DgpcError(f"{field}: {text!r} is a folder, not the artifact's file",
+                        source=json_path)
+    return path
+
+
 def check_listed_paths(doc: dict, json_path: str | Path) -> None:
     """Every file an artifact lists (``data.obj``, ``data.cut_list``, ``data.files.*.path``,
     ``data.rhino_3dm.path``) lies in its folder (:func:`listed_path`); the recorded reference
@@ -229,7 +239,7 @@ def listed_files(json_path: str | Path) -> list[Path]:
     json_path = Path(json_path)
     try:
         doc = json.loads(json_path.read_bytes())
-    except (OSError, ValueError):
+    except (OSError, ValueError, RecursionError):
         return []
     data = doc.get("data") if isinstance(doc, dict) else None
     if not isinstance(data, dict) or doc.get("kind") not in KINDS:

@@ -45,6 +45,7 @@ from ..errors import DgpcError
 from .artifact import (
     artifact_files,
     artifact_paths,
+    listed_file,
     listed_path,
     load_envelope,
     read_listed,
@@ -227,13 +228,29 @@ def _obj_vertices(part: dict) -> int:
     return 2 * len(part["geodesics"][0])
 
 
+def check_simple_outlines(parts: list[dict], source) -> None:
+    """Every part's outline is a simple polygon (no edge crosses another: a bow tie is no
+    piece that can be cut); a DgpcError naming the first part and where it crosses."""
+    import shapely
+    from shapely.validation import explain_validity
+
+    polygons = [shapely.Polygon(np.asarray(p["outline"], dtype=np.float64)) for p in parts]
+    bad = np.flatnonzero(~shapely.is_valid(polygons)) if polygons else []
+    if len(bad):
+        k = int(bad[0])
+        why = " ".join(explain_validity(polygons[k]).split())
+        raise DgpcError(f"data.parts[{k}] ({parts[k]['id']}): its outline crosses itself or "
+                        f"is degenerate ({why})", source=source)
+
+
 @reread
 def read_flat(stem: str | Path) -> FlatArtifact:
     """Read and validate a flat artifact: envelope, schema, the OBJ's hash, and the classes'
     consistency with the parts (every part in exactly one class, quantities match)."""
-    json_path, obj_path = artifact_paths(stem)
+    json_path, _ = artifact_paths(stem)
     doc = load_envelope(json_path, KIND)
     data = doc["data"]
+    obj_path = listed_file(data["obj"], json_path, "data.obj")
     obj = parse_obj(read_obj_checked(json_path, obj_path, data["obj_sha256"]), obj_path)
     check_obj_objects(obj, [(p["id"], _obj_vertices(p)) for p in data["parts"]], obj_path,
                       "data.parts")
@@ -243,6 +260,7 @@ def read_flat(stem: str | Path) -> FlatArtifact:
                     field)
     parts, classes = data["parts"], data["classes"]
     _check_part_points(parts, json_path)
+    check_simple_outlines(parts, json_path)
     ids = [p["id"] for p in parts]
     if len(set(ids)) != len(ids):
         raise DgpcError("data.parts: duplicate part ids", source=json_path)

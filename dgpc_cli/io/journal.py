@@ -7,6 +7,11 @@ visible in one rename: that is the commit. The renames follow and the journal is
 process killed before the commit leaves the old set untouched (its temporary files are removed
 by the next writer, :func:`remove_leftovers`); killed after it, the journal lets the next
 reader or writer finish the renames, so it sees the new set whole (:func:`finish_interrupted`).
+
+A journal is obeyed only where it names the files of its own artifact (:func:`family`): the
+manifest's ``STEM.*`` (a report's ``PREFIX-*``), in the journal's folder, each renamed from
+a temporary file of its own name. Any other entry (a journal placed by hand, or one of
+another program) is refused before anything is renamed or removed, and left alone.
 """
 
 from __future__ import annotations
@@ -15,6 +20,7 @@ import glob
 import json
 import logging
 import os
+import re
 import tempfile
 import time
 from pathlib import Path
@@ -66,20 +72,73 @@ def journal_path(manifest: str | Path) -> Path:
 
 
 def manifest_of(paths: list[Path]) -> Path:
-    """The file of a set that names its journal: the first JSON, else the first file."""
-    return next((p for p in paths if p.suffix == ".json"), paths[0])
+    """The file of a set that names its journal: the first JSON, else the first index page
+    (a report's ``PREFIX-index.html``), else the first file."""
+    return next((p for p in paths if p.suffix == ".json"),
+                next((p for p in paths if p.name.endswith("index.html")), paths[0]))
+
+
+#: Pages written in one set with a JSON of another stem (the batch's summary).
+COMPANIONS = {"batch.json": ("index.html",)}
+#: A temporary file of :func:`write_temp` for the file ``NAME``: ``.NAME.<random>.tmp``.
+_TEMP = re.compile(r"\.(?P<name>.+)\.[A-Za-z0-9_]+\.tmp")
+#: A backup of :mod:`.atomic` of the file ``NAME``: ``.NAME.<hex>.bak``.
+_BACKUP = re.compile(r"\.(?P<name>.+)\.[0-9a-f]+\.bak")
+
+
+def family(manifest: str) -> tuple[str, tuple[str, ...]]:
+    """The prefix the names of the artifact ``manifest`` begin with (``STEM.`` of a JSON or
+    OBJ, ``PREFIX-`` of a report's ``PREFIX-index.html``), and its companion names."""
+    for suffix in (".json", ".obj"):
+        if manifest.endswith(suffix):
+            return manifest[: -len(suffix)] + ".", COMPANIONS.get(manifest, ())
+    if manifest.endswith("-index.html"):
+        return manifest[: -len("index.html")], ()
+    return manifest, ()
+
+
+def _plan(doc, journal: Path) -> tuple[list[tuple[Path, Path]], list[Path]]:
+    """The renames and removals of a journal, every one checked to belong to its artifact;
+    a DgpcError naming the journal and the first entry that does not (nothing done)."""
+    def refuse(what: str):
+        raise DgpcError(f"the journal of an interrupted write names {what}, which is not a "
+                        "file of its artifact: nothing done; remove the journal if it is not "
+                        "dgpc's", source=journal)
+
+    manifest = journal.name[1: -len(".journal")] if journal.name.startswith(".") \
+        and journal.name.endswith(".journal") else ""
+    prefix, companions = family(manifest)
+
+    def own(name) -> bool:
+        return isinstance(name, str) and bool(manifest) and "/" not in name \
+            and "\\" not in name and name not in ("", ".", "..") \
+            and (name == manifest or name in companions or name.startswith(prefix))
+
+    if not isinstance(doc, dict) or not isinstance(doc.get("replace", []), list) \
+            or not isinstance(doc.get("remove", []), list) or set(doc) - {"replace", "remove"}:
+        refuse("something other than its replace and remove lists")
+    directory = journal.parent
+    renames, targets = [], set()
+    for pair in doc.get("replace", []):
+        if not (isinstance(pair, list) and len(pair) == 2 and own(pair[1])
+                and isinstance(pair[0], str) and "/" not in pair[0]):
+            refuse(repr(pair))
+        temp = _TEMP.fullmatch(pair[0])
+        if temp is None or temp["name"] != pair[1]:
+            refuse(repr(pair[0]))
+        renames.append((directory / pair[0], directory / pair[1]))
+        targets.add(pair[1])
+    removals = []
+    for name in doc.get("remove", []):
+        backup = _BACKUP.fullmatch(name) if isinstance(name, str) and "/" not in name else None
+        if not (own(name) or (backup is not None and backup["name"] in targets)):
+            refuse(repr(name))
+        removals.append(directory / name)
+    return renames, removals
 
 
 def _relative(path: Path, directory: Path) -> str:
     return Path(os.path.relpath(os.path.abspath(path), os.path.abspath(directory))).as_posix()
-
-
-def _inside(text: object, directory: Path) -> Path | None:
-    """``directory / text`` for a relative path without ``..`` (None otherwise)."""
-    if not isinstance(text, str) or not text or os.path.isabs(text) \
-            or ".." in Path(text).parts:
-        return None
-    return directory / text
 
 
 def commit(journal: Path, renames: list[tuple[Path, Path]], remove: list[Path]) -> None:
@@ -96,24 +155,17 @@ def _replay(journal: Path) -> None:
     """Finish the renames a committed journal lists, remove what it lists, then the journal."""
     try:
         doc = json.loads(journal.read_bytes())
-    except (OSError, ValueError) as e:
+    except (OSError, ValueError, RecursionError) as e:
         raise DgpcError(f"cannot read the journal of an interrupted write ({e}); remove it to "
                         "keep the files as they are, or write the artifact again after removing "
                         "it", source=journal) from None
     directory = journal.parent
-    renames = doc.get("replace", []) if isinstance(doc, dict) else []
-    for pair in renames if isinstance(renames, list) else []:
-        tmp, path = (_inside(x, directory) for x in pair) if isinstance(pair, list) \
-            and len(pair) == 2 else (None, None)
-        if tmp is None or path is None or not tmp.name.endswith(".tmp"):
-            raise DgpcError("the journal of an interrupted write lists an unexpected path",
-                            source=journal)
+    renames, removals = _plan(doc, journal)
+    for tmp, path in renames:
         if tmp.exists():
             os.replace(tmp, path)
-    for text in doc.get("remove", []) if isinstance(doc, dict) else []:
-        path = _inside(text, directory)
-        if path is not None:
-            path.unlink(missing_ok=True)
+    for path in removals:
+        path.unlink(missing_ok=True)
     journal.unlink(missing_ok=True)
     fsync_dir(directory)
     log.info("%s: finished a write that was interrupted after its commit", journal.parent)

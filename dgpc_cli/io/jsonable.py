@@ -40,6 +40,23 @@ def to_jsonable(obj: Any) -> Any:
     raise TypeError(f"not JSON serializable: {type(obj).__name__}")
 
 
+#: Deepest nesting of arrays and objects a JSON file read here may have (an artifact needs
+#: fewer than 10); deeper is refused before anything walks it recursively.
+MAX_DEPTH = 64
+
+
+def nesting_depth(doc: Any) -> int:
+    """How deeply arrays and objects nest in ``doc`` (0 for a number), without recursion."""
+    deepest, stack = 0, [(doc, 1)]
+    while stack:
+        value, depth = stack.pop()
+        if isinstance(value, (dict, list)):
+            deepest = max(deepest, depth)
+            items = value.values() if isinstance(value, dict) else value
+            stack.extend((v, depth + 1) for v in items if isinstance(v, (dict, list)))
+    return deepest
+
+
 def read_json(path: str | Path) -> Any:
     """Parsed content of a JSON file; DgpcError naming the file if it is missing or not JSON."""
     path = Path(path)
@@ -57,11 +74,17 @@ def read_json(path: str | Path) -> Any:
     try:
         doc = json.loads(text, parse_float=numbers.float, parse_int=numbers.int,
                          parse_constant=numbers.constant)
+    except RecursionError:
+        raise DgpcError(f"not valid JSON here: nested more than {MAX_DEPTH} levels deep",
+                        source=path) from None
     except json.JSONDecodeError as e:
         raise DgpcError(f"not valid JSON: {e.msg} at line {e.lineno}, column {e.colno}",
                         source=path) from None
     except ValueError as e:  # an integer of more digits than Python converts
         raise DgpcError(f"not valid JSON: {e}", source=path) from None
+    if nesting_depth(doc) > MAX_DEPTH:
+        raise DgpcError(f"not valid JSON here: nested more than {MAX_DEPTH} levels deep",
+                        source=path)
     if numbers.bad:
         where, what = first_non_finite(doc)
         raise DgpcError(f"{where}: non-finite number ({what})", source=path)

@@ -14,6 +14,7 @@ from ..errors import DgpcError
 from .artifact import (
     artifact_paths,
     dumps_json,
+    listed_file,
     listed_path,
     load_envelope,
     make_envelope,
@@ -150,9 +151,10 @@ class LathsArtifact:
 def read_laths(stem: str | Path) -> LathsArtifact:
     """Read and validate a laths artifact: envelope, schema, the OBJ's and the cut list's
     hashes, and that both list the same laths in the counts the JSON records."""
-    json_path, obj_path = artifact_paths(stem)
+    json_path, _ = artifact_paths(stem)
     doc = load_envelope(json_path, KIND)
     data = doc["data"]
+    obj_path = listed_file(data["obj"], json_path, "data.obj")
     obj = read_listed(obj_path, data["obj_sha256"], json_path, "data.obj_sha256")
     csv_path = listed_path(data["cut_list"], json_path, "data.cut_list")
     csv = read_listed(csv_path, data["cut_list_sha256"], json_path, "data.cut_list_sha256")

@@ -2,8 +2,10 @@
 with ``flock`` from the moment ``-o`` is parsed until the command ends.
 
 A second process that asks for the same stem is refused at once (DgpcError, exit 1, one
-line). The lock file is removed when its holder ends; one left behind by a killed process
-holds no lock (the kernel releases it) and the next holder removes it.
+line), and so is a writer that cannot take the lock at all (the lock path is a folder, a lock
+file it may not open): a lock is never skipped. The lock file is removed when its holder
+ends; one left behind by a killed process holds no lock (the kernel releases it) and the
+next holder removes it.
 """
 
 from __future__ import annotations
@@ -82,14 +84,26 @@ def _release(path: Path, fd: int) -> None:
     os.close(fd)
 
 
+def _unusable(path: Path, err: OSError) -> DgpcError:
+    """The one-line refusal of a lock that cannot be taken."""
+    reason = err.strerror or str(err)
+    if not path.exists() and not path.is_symlink():
+        return DgpcError(f"cannot write in this folder ({reason}), so the lock of an output "
+                         f"({path.name}) cannot be taken", source=path.parent)
+    return DgpcError(f"cannot take this lock of the output ({reason}); if no dgpc process is "
+                     "writing that output, remove it", source=path)
+
+
 @contextmanager
 def output_lock(output: str | Path, *, wait: bool = False) -> Iterator[bool]:
     """Hold the lock of the output stem ``output`` for the ``with`` block.
 
     Yields True while holding it (or when this process already holds it). Another process
     holding it raises a DgpcError naming the output, unless ``wait``: then the block runs
-    without the lock and gets False. A folder that does not exist or cannot be written has
-    no lock to take (the write itself reports the problem); the block then gets True.
+    without the lock and gets False. A folder that does not exist has no lock to take (the
+    write itself reports the problem); the block then gets True. A lock that cannot be taken
+    (the lock path is a folder, a lock file this user may not open, a folder it may not
+    write) is a DgpcError naming the lock file; a reader (``wait``) goes on without it.
     """
     path = lock_path(output)
     key = os.path.abspath(path)
@@ -99,7 +113,9 @@ def output_lock(output: str | Path, *, wait: bool = False) -> Iterator[bool]:
         if not reentrant:
             try:
                 fd = _acquire(path) if path.parent.is_dir() else -1
-            except OSError:
+            except OSError as e:
+                if not wait:
+                    raise _unusable(path, e) from None
                 fd = -1
             if fd is not None and fd >= 0:
                 _HELD[key] = fd

@@ -11,13 +11,14 @@ from ..errors import DgpcError
 from .artifact import (
     artifact_files,
     artifact_paths,
+    listed_file,
     load_envelope,
     read_listed,
     reread,
 )
 from .atomic import write_files
 from .coordinates import bad_rows, coordinate_problem
-from .obj import format_net_obj, parse_net_obj
+from .obj import check_net_faces, format_net_obj, parse_net_obj
 from .units import DEFAULT_UNITS, stored, to_mm
 
 KIND = "net"
@@ -119,12 +120,14 @@ def net_shape(data: dict, json_path: str | Path) -> tuple[int, int]:
 @reread
 def read_net(stem: str | Path) -> NetArtifact:
     """Read and validate a net artifact (envelope, OBJ hash, vertex count, finiteness)."""
-    json_path, obj_path = artifact_paths(stem)
+    json_path, _ = artifact_paths(stem)
     doc = load_envelope(json_path, KIND)
     data = doc["data"]
     m, n = net_shape(data, json_path)
+    obj_path = listed_file(data["obj"], json_path, "data.obj")
     obj_bytes = read_listed(obj_path, data["obj_sha256"], json_path, "data.obj_sha256")
     f = parse_net_obj(obj_bytes, m, n, obj_path)
+    check_net_faces(obj_bytes, m, n, obj_path)
     return NetArtifact(f=f, units=data["units"], parameters=doc["parameters"],
                        inputs=doc["inputs"], data=data, metrics=doc["metrics"],
                        status=doc["status"])

@@ -84,6 +84,32 @@ def parse_net_obj(data: bytes, m: int, n: int, source: str | Path) -> np.ndarray
     return f.reshape(m, n, 3)
 
 
+_FACE = re.compile(rb"^[ \t]*f[ \t]+([^\r\n]*)", re.MULTILINE)
+
+
+def check_net_faces(data: bytes, m: int, n: int, source: str | Path) -> None:
+    """The faces of a net's OBJ are exactly the m×n grid's quads (:func:`net_quads`, in that
+    order): a face naming a vertex the net does not have, or a grid of another shape (a
+    ``data.shape`` of [7, 9] on a 9×7 net, whose vertex count agrees), is a DgpcError naming
+    ``source``."""
+    faces = []
+    for k, match in enumerate(_FACE.finditer(data), 1):
+        try:
+            faces.append([int(token.split(b"/")[0]) for token in match.group(1).split()])
+        except ValueError:
+            raise DgpcError(f"face {k}: not vertex numbers: {match.group(0)[:60]!r}",
+                            source=source) from None
+        bad = [i for i in faces[-1] if not 1 <= i <= m * n]
+        if bad:
+            raise DgpcError(f"face {k} names vertex {bad[0]}, but the net has {m * n} "
+                            f"({m} x {n})", source=source)
+    expected = net_quads(m, n) + 1
+    if len(faces) != len(expected) or any(len(face) != 4 for face in faces) \
+            or not np.array_equal(np.array(faces, dtype=np.int64), expected):
+        raise DgpcError(f"its {len(faces)} faces are not the quads of a {m} x {n} net "
+                        "(does data.shape match the OBJ?)", source=source)
+
+
 @dataclass
 class ObjObject:
     """One ``o`` object of an OBJ: its name, vertex count, ``g`` groups (in order) and how many

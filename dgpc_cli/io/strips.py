@@ -18,6 +18,7 @@ from ..errors import DgpcError
 from .artifact import (
     artifact_files,
     artifact_paths,
+    listed_file,
     load_envelope,
     read_listed,
     reread,
@@ -127,9 +128,10 @@ def strips_files(stem: str | Path, art: StripsArtifact) -> dict[Path, bytes]:
 @reread
 def read_strips(stem: str | Path) -> StripsArtifact:
     """Read and validate a strips artifact (envelope, schema, OBJ hash and vertex counts)."""
-    json_path, obj_path = artifact_paths(stem)
+    json_path, _ = artifact_paths(stem)
     doc = load_envelope(json_path, KIND)
     data = doc["data"]
+    obj_path = listed_file(data["obj"], json_path, "data.obj")
     obj_bytes = read_obj_checked(json_path, obj_path, data["obj_sha256"])
     records = data["strips"]
     check_obj_objects(parse_obj(obj_bytes, obj_path), [(r["id"], 2 * r["rows"]) for r in records],

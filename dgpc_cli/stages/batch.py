@@ -13,7 +13,9 @@ The function that runs a task on a worker is passed in (``runner``): the command
 
 from __future__ import annotations
 
+import asyncio
 import logging
+import os
 import time
 import uuid
 from collections.abc import Callable
@@ -22,11 +24,106 @@ from pathlib import Path
 
 from dgpc_cli.batch.cache import fingerprint, load_previous, reusable
 from dgpc_cli.batch.graph import Task
+from dgpc_cli.errors import DgpcError
 
 log = logging.getLogger(__name__)
 
 #: Exit codes after which the next stages run (the artifact was written).
 WRITTEN = (0, 3)
+
+
+#: Seconds a scheduler has to answer, and then to have a worker (``dgpc batch --timeout``).
+CONNECT_TIMEOUT = 20.0
+#: The address forms a scheduler may be given in (Dask's default scheme is tcp).
+SCHEMES = ("tcp",)
+
+
+def machine_cores() -> int:
+    """The cores this process may run on (its CPU affinity, else the machine's count)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        return os.cpu_count() or 1
+
+
+def scheduler_address(address: str) -> str:
+    """``tcp://HOST:PORT`` of ``address`` (``HOST:PORT`` or ``tcp://HOST:PORT``); another
+    scheme, or no port, is a DgpcError naming ``--scheduler``."""
+    scheme, sep, rest = address.partition("://")
+    if not sep:
+        scheme, rest = "tcp", address
+    if scheme.lower() not in SCHEMES:
+        raise DgpcError(f"{address}: the scheme {scheme}:// is not supported; give "
+                        "tcp://HOST:PORT", source="--scheduler")
+    host, colon, port = rest.rpartition(":")
+    if not colon or not host or not port.isdigit() or not 0 < int(port) < 65536:
+        raise DgpcError(f"{address}: not HOST:PORT (e.g. tcp://10.0.0.5:8786)",
+                        source="--scheduler")
+    return f"tcp://{rest}"
+
+
+def probe_scheduler(address: str, timeout: float) -> dict:
+    """Ask the Dask scheduler at ``address`` who it is (its ``identity``), within ``timeout``
+    seconds for the connection, the handshake and the answer together: Dask bounds only the
+    connection, so a silent peer would hang and a non-Dask server's reply be read as a frame
+    of exabytes. A DgpcError in one line otherwise."""
+    from distributed.core import rpc
+
+    async def ask():
+        async with rpc(address, timeout=timeout) as scheduler:
+            return await scheduler.identity()
+
+    try:
+        info = asyncio.run(asyncio.wait_for(ask(), timeout))
+    except TimeoutError:
+        raise DgpcError(f"{address}: no answer from a Dask scheduler within {timeout:g} s "
+                        "(a silent port, or not a Dask scheduler)", source="--scheduler") \
+            from None
+    except OSError as err:
+        reason = " ".join(str(err).split()) or type(err).__name__
+        raise DgpcError(f"{address}: cannot connect: {reason}", source="--scheduler") from None
+    except Exception as err:  # noqa: BLE001 - any reply Dask cannot read (HTTP, MemoryError)
+        raise DgpcError(f"{address}: not a Dask scheduler (its answer could not be read: "
+                        f"{type(err).__name__})", source="--scheduler") from None
+    if not isinstance(info, dict) or info.get("type") != "Scheduler":
+        raise DgpcError(f"{address}: not a Dask scheduler (it answers as "
+                        f"{info.get('type') if isinstance(info, dict) else 'something else'})",
+                        source="--scheduler")
+    return info
+
+
+def connect(scheduler: str | None, workers: int | None, timeout: float = CONNECT_TIMEOUT):
+    """A Dask client, its local cluster (None with ``scheduler``) and what to record of it.
+
+    ``scheduler``: its address (checked, probed within ``timeout`` and waited for a worker
+    as long); else a new local cluster of ``workers`` single-threaded processes on the
+    loopback address (default: one per core, :func:`machine_cores`). Nothing is written:
+    the caller makes its output folder once this returns."""
+    from distributed import Client, LocalCluster
+
+    from dgpc_cli.batch.cluster import local_cluster_options
+
+    if scheduler is not None:
+        address = scheduler_address(scheduler)
+        probe_scheduler(address, timeout)
+        try:
+            client = Client(address, timeout=f"{timeout}s")
+        except (OSError, TimeoutError, ValueError) as err:
+            reason = " ".join(str(err).split()) or type(err).__name__
+            raise DgpcError(f"{scheduler}: cannot connect: {reason}",
+                            source="--scheduler") from None
+        try:
+            client.wait_for_workers(1, timeout=timeout)
+        except TimeoutError:
+            client.close()
+            raise DgpcError(f"{scheduler}: the scheduler has no workers (none joined within "
+                            f"{timeout:g} s); start some with `dask worker {address} "
+                            "--nthreads 1`", source="--scheduler") from None
+        return client, None, {"scheduler": scheduler,
+                              "workers": len(client.scheduler_info()["workers"])}
+    n = workers or machine_cores()
+    cluster = LocalCluster(**local_cluster_options(n))
+    return Client(cluster), cluster, {"scheduler": "local", "workers": n}
 
 
 @dataclass
@@ -54,7 +151,7 @@ class BatchRun:
 def task_spec(task: Task, out: Path, base: Path) -> dict:
     """What the worker needs to run ``task``: the command, its arguments and the folders."""
     return {"id": task.id, "command": task.command, "args": task.args, "cwd": str(base),
-            "out": str(out), "outputs": task.outputs}
+            "out": str(out), "artifact": task.artifact}
 
 
 def run_batch(tasks: dict[str, Task], out: Path, base: Path, client, runner: Callable,
