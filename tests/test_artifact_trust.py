@@ -226,3 +226,15 @@ def test_a_bow_tie_outline_is_one_line(chain, tmp_path):
     one_line_error(dgpc("inspect", flat, expect=None), "data.parts[0]", "crosses itself")
     one_line_error(dgpc("nest", flat, "--sheet", "7x5", "-o", tmp_path / "sheets",
                         expect=None), "crosses itself")
+
+
+def test_an_output_option_is_not_taken_for_an_input(tmp_path):
+    """init --reference-out names a file init writes, beside -o: not an input to protect."""
+    from cli_helpers import dgpc
+
+    dgpc("init", "--surface", "revolution", "--profile", "cylinder", "--rows", 5, "--cols", 5,
+         "--units", "m", "--reference-out", tmp_path / "ref.obj", "-o", tmp_path / "n")
+    dgpc("init", "--surface", "revolution", "--profile", "cylinder", "--rows", 5, "--cols", 5,
+         "--units", "m", "--reference-out", tmp_path / "ref.obj", "-o", tmp_path / "n",
+         "--force")
+    assert (tmp_path / "ref.obj").exists() and (tmp_path / "n.json").exists()

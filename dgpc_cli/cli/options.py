@@ -88,7 +88,9 @@ def check_not_input(stem: Path, *extra: Path) -> None:
         return
     outputs = {p.resolve() for p in (*artifact_paths(stem), *extra)}
     for param in ctx.command.params:
-        if not isinstance(param.type, click.Path) or isinstance(param.type, OutputPath):
+        # outputs are not inputs: -o, and options named for what they write (--reference-out)
+        if not isinstance(param.type, click.Path) or isinstance(param.type, OutputPath) \
+                or param.name.endswith("_out"):
             continue
         value = ctx.params.get(param.name)
         values = value if isinstance(value, (list, tuple)) else [value]
