@@ -45,3 +45,22 @@ def test_conversions_and_text():
     with pytest.raises(ValueError):
         Length(3.0).to_mm()
     assert "data.units" in length_help("Gap.") and "in mm" in length_help("Gap.", plain="mm")
+
+
+@pytest.mark.parametrize("text, size", [("2500x1250", (2500.0, 1250.0)),
+                                        ("6.1mx2.5m", (6100.0, 2500.0)),
+                                        ("6100x2500mm", (6100.0, 2500.0)),
+                                        ("6.1x2.5m", (6100.0, 2500.0)),
+                                        ("250cm × 125cm", (2500.0, 1250.0))])
+def test_sheet_sizes_take_units(text, size):
+    from dgpc_cli.stages.nest import parse_sheet
+
+    assert parse_sheet(text) == pytest.approx(size, rel=1e-15)
+
+
+@pytest.mark.parametrize("text", ["1x2yd", "0x1", "2500", "2500x1250x3", "nanx1"])
+def test_bad_sheet_sizes(text):
+    from dgpc_cli.stages.nest import parse_sheet
+
+    with pytest.raises(ValueError):
+        parse_sheet(text)

@@ -59,7 +59,9 @@ def _parsed(parser):
 @click.option("--mold", "mold_stem", type=click.Path(path_type=Path), metavar="MOLD",
               help="A mold artifact: also write the panel-to-mold map DXF.")
 @click.option("--sheet", "sheet_size", required=True, callback=_parsed(parse_sheet),
-              metavar="WIDTHxHEIGHT", help="Sheet size in mm, e.g. 2500x1250.")
+              metavar="WIDTHxHEIGHT",
+              help="Sheet size, width x height: plain numbers in mm (2500x1250), or with a "
+                   "unit (6.1mx2.5m, 6100x2500mm; one unit after the height is both sides').")
 @click.option("--tool", type=click.Choice(list(TOOLS)), default=None,
               help="The cutter, for the spacing and margin defaults: laser (kerf 0.2 mm, "
                    "spacing 3 mm, margin 10 mm), router (bit 6 mm, spacing 8 mm, margin "

@@ -62,13 +62,26 @@ def parse_rotations(text: str) -> list[float]:
     return values
 
 
+_SIDE = re.compile(r"^\s*([+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:e[+-]?\d+)?)\s*([a-z]+)?\s*$")
+
+
 def parse_sheet(text: str) -> tuple[float, float]:
-    """``"2500x1250"`` → ``(2500.0, 1250.0)`` mm (ValueError unless both are > 0)."""
+    """``"2500x1250"`` → ``(2500.0, 1250.0)`` mm; each side may carry a unit (``6.1mx2.5m``),
+    and one unit after the last side is both sides' (``6100x2500mm``, ``6.1x2.5m``); plain
+    numbers are mm (ValueError unless both are > 0 and the units known)."""
     parts = str(text).lower().replace("×", "x").split("x")
+    sides = [_SIDE.match(p) for p in parts]
+    if len(parts) != 2 or not all(sides):
+        raise ValueError(f"{text!r} is not WIDTHxHEIGHT (mm, or with a unit: 6.1mx2.5m, "
+                         "6100x2500mm), e.g. 2500x1250")
+    units = [m.group(2) for m in sides]
+    if units[0] is None:
+        units[0] = units[1]
     try:
-        w, h = (float(p) for p in parts)
-    except ValueError:
-        raise ValueError(f"{text!r} is not WIDTHxHEIGHT in mm, e.g. 2500x1250") from None
+        w, h = (float(m.group(1)) * (mm_per_unit(u) if u else 1.0)
+                for m, u in zip(sides, units, strict=True))
+    except DgpcError as err:
+        raise ValueError(f"{text!r}: {err.reason}") from None
     if not (np.isfinite(w) and np.isfinite(h) and w > 0 and h > 0):
         raise ValueError(f"{text!r}: width and height must be > 0 mm")
     return w, h
