@@ -126,11 +126,29 @@ def piece_outline(outline: np.ndarray) -> tuple[np.ndarray, float]:
     return coords, tol
 
 
+#: Most points an outline is cut into when two are compared (:func:`_rings_apart`).
+MAX_SAMPLES = 4096
+
+
 def _rings_apart(a: np.ndarray, b: np.ndarray, step: float, limit: float = np.inf) -> float:
     """An upper bound (mm) of the Hausdorff distance between the closed outlines ``a`` and
-    ``b``: both cut into pieces no longer than ``step``, the largest distance of a point of one
-    to the other, plus half the step (the distance is 1-Lipschitz along an edge)."""
+    ``b``: the largest distance of corresponding vertices where they have as many (when that is
+    within ``limit``); else both cut into pieces no longer than ``step`` (at most
+    :data:`MAX_SAMPLES`), the largest distance of a point of one to the other, plus half the
+    step (the distance is 1-Lipschitz along an edge); inf where the vertices alone are farther
+    apart than ``limit``."""
+    if len(a) == len(b):
+        # outlines built alike (same vertex count, corresponding vertices): a point of one edge
+        # lies as far from the other outline as at most the farther of its edge's ends lies
+        # from the corresponding vertex, so the vertex correspondence bounds the distance
+        paired = float(np.linalg.norm(a - b, axis=1).max())
+        if paired <= limit:
+            return paired
     ra, rb = shapely.linearrings(a), shapely.linearrings(b)
+    # at most MAX_SAMPLES points per outline: a tolerance far below the outline's size would
+    # cut it into millions of pieces (the bound then grows with the step, and the shapes are
+    # not grouped: grouping only saves work)
+    step = max(step, max(ra.length, rb.length) / MAX_SAMPLES)
     if max(shapely.distance(shapely.points(a), rb).max(),
            shapely.distance(shapely.points(b), ra).max()) > limit:
         return np.inf                                   # the vertices alone are too far
