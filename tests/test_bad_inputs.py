@@ -209,6 +209,7 @@ COMMAND_LINES = {
     "report": ["report", "{d}/cat"],
     "laths": ["laths", "{d}/cat", "{d}/cat"],
     "batch": ["batch", "{d}/project.toml"],
+    "edit": ["edit", "{d}/cat", "--replay", "{d}/drags.json"],
 }
 
 

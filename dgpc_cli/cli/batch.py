@@ -11,6 +11,7 @@ from pathlib import Path
 
 import click
 
+from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.output_path import OutputPath
 
 log = logging.getLogger(__name__)
@@ -68,10 +69,10 @@ def _progress_line(p) -> str:
                    "its workers must see the project's files and DIR at the same paths.")
 @click.option("--workers", type=click.IntRange(min=1),
               help="Worker processes of the local cluster [default: the number of cores].")
-@click.option("--timeout", type=click.FloatRange(min=0, min_open=True), default=20.0,
+@click.option("--timeout", type=FiniteFloat(min=0, min_open=True, max=3600), default=20.0,
               show_default=True, metavar="SECONDS",
-              help="How long the scheduler at --scheduler has to answer, and then to have a "
-                   "worker.")
+              help="Seconds (up to 3600) the scheduler at --scheduler has to answer, and then "
+                   "to have a worker.")
 @click.option("-q", "--quiet", is_flag=True, help="No progress on stderr (as `dgpc -q`).")
 @click.pass_context
 def batch(ctx, project, out, scheduler, workers, timeout, quiet):

@@ -46,7 +46,7 @@ COMMANDS = {
     "planarize-strips": ("planarize_strips", "planarize_strips_cmd",
                          "Make every geodesic strip a strip of planar quads."),
     "unfold": ("unfold", "unfold",
-               "Develop strips into the plane; group them into congruence classes."),
+               "Develop strips into the plane; group them into cutting templates."),
     "report": ("report", "report", "Write figures of an artifact (PNG) and an index.html."),
     "inspect": ("inspect", "inspect", "Print an artifact's metrics as JSON."),
     "laths": ("laths", "laths", "Gridshell laths of two nets and their cut list."),

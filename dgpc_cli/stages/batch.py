@@ -67,7 +67,21 @@ def probe_scheduler(address: str, timeout: float) -> dict:
     seconds for the connection, the handshake and the answer together: Dask bounds only the
     connection, so a silent peer would hang and a non-Dask server's reply be read as a frame
     of exabytes. A DgpcError in one line otherwise."""
+    import socket
+
     from distributed.core import rpc
+
+    # a plain TCP connection first: a refused or unreachable address is told as such at once
+    # (Dask retries a refused connection until its timeout, and would report it as silent)
+    host, _, port = address.removeprefix("tcp://").rpartition(":")
+    try:
+        socket.create_connection((host.strip("[]"), int(port)), timeout=timeout).close()
+    except TimeoutError:
+        raise DgpcError(f"{address}: no answer within {timeout:g} s (nothing accepts a "
+                        "connection there)", source="--scheduler") from None
+    except OSError as err:
+        reason = " ".join(str(err).split()) or type(err).__name__
+        raise DgpcError(f"{address}: cannot connect: {reason}", source="--scheduler") from None
 
     async def ask():
         async with rpc(address, timeout=timeout) as scheduler:
