@@ -60,6 +60,7 @@ def test_no_reference_drops_it_explicitly(felt):
 def test_a_missing_recorded_reference_is_named(felt, tmp_path):
     doc = json.loads((felt / "fit.json").read_text())
     doc["data"]["reference"]["path"] = "gone.obj"
+    doc["data"]["obj"] = "n.obj"                  # the copy's own OBJ (data.obj is read)
     (tmp_path / "n.json").write_text(json.dumps(doc))
     (tmp_path / "n.obj").write_bytes((felt / "fit.obj").read_bytes())
     r = dgpc("optimize", tmp_path / "n", "--mode", "developable", "-o", tmp_path / "x",
