@@ -24,6 +24,9 @@ def test_every_dxf_of_the_pipelines_is_cam_ready(pipeline_run, name):
     expected = {sheets.file(s["dxf"]).name for s in sheets.data["sheets"]}
     if name == "gehry-facade":
         expected |= {"mold.profile.dxf", "sheets.moldmap.dxf"}
+    # one DXF per cutting template, as unfold lists them
+    files = json.loads((d / "flat.json").read_text())["data"]["files"]
+    expected |= {f["path"] for key, f in files.items() if key.startswith("template_")}
     assert {p.name for p in d.glob("*.dxf")} == expected
     for path in sorted(d.glob("*.dxf")):
         check_cam_ready(path)
