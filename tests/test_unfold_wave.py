@@ -38,7 +38,9 @@ def wave_strips(tmp_path_factory):
     dgpc("optimize", d / "w0", "--mode", "fit", "--reference", WAVE, "-o", d / "w1")
     assert metrics(d / "w1")["R"] <= 1e-8
     dgpc("planarize-strips", d / "w1", "-o", d / "s")
-    dgpc("unfold", d / "s", "-o", d / "f")
+    # the strips are 4.12 units long, in mm by default: the default 0.5 mm would be 12 % of a
+    # strip's length; 0.004 mm is the tenth of a percent the classes were measured at before
+    dgpc("unfold", d / "s", "--congruence-tol", "0.004mm", "-o", d / "f")
     return d
 
 
@@ -56,7 +58,9 @@ def test_wave_net_strips(wave_strips):
     assert 0 < mf["max_straightness"] <= 5e-2             # geodesics develop almost straight
     flat = read_flat(tmp_path / "f")
     # a freeform: (almost) every strip its own class; members of a class agree within 1e-3
-    assert 9 <= mf["n_classes"] <= 11
+    # ends on the edge rows: the strips of the wave's projected grid agree to about 0.1 % of
+    # their length, 2 classes (their slanted end rulings made 9 to 11 classes at 0.1 %)
+    assert mf["n_classes"] <= 2 and mf["max_congruence_deviation_mm"] <= 0.004
     assert all(c["max_relative_error"] <= 1e-3 for c in flat.classes)
     for part in flat.parts:
         assert part["area"] > 0 and len(part["score"]) == 13
