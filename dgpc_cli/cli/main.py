@@ -47,7 +47,7 @@ COMMANDS = {
                          "Make every geodesic strip a strip of planar quads."),
     "unfold": ("unfold", "unfold",
                "Develop strips into the plane; group them into cutting templates."),
-    "report": ("report", "report", "Write figures of an artifact (PNG) and an index.html."),
+    "report": ("report", "report", "Write figures of artifacts (PNG) and an index.html."),
     "inspect": ("inspect", "inspect", "Print an artifact's metrics as JSON."),
     "laths": ("laths", "laths", "Gridshell laths of two nets and their cut list."),
     "nest": ("nest", "nest", "Nest the flat parts on cut sheets (DXF, SVG, PNG)."),
