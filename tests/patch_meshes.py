@@ -10,7 +10,7 @@ from outline_meshes import _grid_faces
 
 #: Two lobes: plan LOBES_SIZE (x × y, metres), lobe centres at x = ±LOBE_OFFSET, height and
 #: radius of each Gaussian lobe.
-LOBES_SIZE, LOBE_OFFSET, LOBE_HEIGHT, LOBE_RADIUS = (24.0, 10.0), 6.0, 6.0, 3.5
+LOBES_SIZE, LOBE_OFFSET, LOBE_HEIGHT, LOBE_RADIUS = (24.0, 10.0), 6.0, 2.0, 4.0
 
 
 def two_lobes(rows: int = 48, cols: int = 20) -> tuple[np.ndarray, np.ndarray]:

@@ -9,6 +9,7 @@ from pathlib import Path
 import click
 
 from dgpc_cli.cli.finite_float import FiniteFloat
+from dgpc_cli.cli.init_patches import PatchCount, patch_nets
 from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import (
     check_writable,
@@ -139,6 +140,13 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
                    "on the mesh continued in its boundary's tangent planes, and `optimize` "
                    "fits it to that continuation (reaching twice as far, so the net's rim "
                    "meets no boundary); the net records the mesh itself.")
+@click.option("--patches", type=PatchCount(), metavar="auto|K",
+              help="With --method: split the mesh into K patches along the necks and valleys "
+                   "between its lobes and make one net on each (STEM.p1, STEM.p2, ..., each "
+                   "with its patch STEM.pK.patch.obj as its reference, so that `optimize "
+                   "--mode fit` and `planarize-strips --trim` keep to the patch); 'auto': only "
+                   "where the single net's strips vary in width more than 3x along them "
+                   "(else one net, STEM). stdout lists the nets; data.init.patches says why.")
 @click.option("--rows", "rows", type=click.IntRange(min=3),
               help="m: vertices along the geodesics (required with --surface; default with a "
                    "mesh: square quads).")
@@ -172,7 +180,7 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
 @format_opt
 @click.pass_context
 def init(ctx, reference, surface, profile, method, base, direction, angle, from_quads,
-         largest_component, extend, rows, cols, spacing, span, twist, reference_out, units,
+         largest_component, extend, patches, rows, cols, spacing, span, twist, reference_out, units,
          output, force, fmt):
     """Make an initial m×n net (u-lines: the geodesics).
 
@@ -182,6 +190,7 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
               [--angle DEG] [--rows M] [--cols N|--edge-length L] [--extend F] -o STEM
     dgpc init MESH --method project [--direction x,y,z] [--angle DEG] [--rows M]
               [--cols N|--edge-length L] [--extend F] -o STEM
+    dgpc init MESH --method geodesic|project --patches auto|K [...] -o STEM
     dgpc init --from-quads NET.obj [MESH] -o STEM
 
     With --surface the z axis is the axis of revolution and a CSV profile is resampled by arc
@@ -207,6 +216,11 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
             raise click.UsageError("--base goes with --method geodesic")
         if base not in (None, "auto", "section") and (direction is not None or angle is not None):
             raise click.UsageError(f"--base {base} takes no --direction or --angle")
+    if patches is not None and not method:
+        raise click.UsageError("--patches goes with REFERENCE and --method")
+    if patches is not None and base not in (None, "auto", "section", "boundary"):
+        raise click.UsageError(f"--base {base} names a boundary curve of the whole mesh; with "
+                               "--patches give auto, section or boundary")
     if extend > 0 and not method:
         raise click.UsageError("--extend goes with REFERENCE and --method")
     if (base or angle is not None) and not method:
@@ -232,6 +246,17 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     elif method:
         net, mesh = _mesh_net(ctx, reference, method, base, d, angle, rows, cols, spacing,
                               largest_component, extend)
+        if patches is not None:
+            written = patch_nets(ctx, net, mesh, patches, output,
+                                 {"method": method, "base": base, "direction": d,
+                                  "angle": angle, "rows": rows, "cols": cols,
+                                  "spacing": spacing, "extend": extend,
+                                  "largest_component": largest_component},
+                                 units=units, fmt=fmt, force=force)
+            if written:
+                for path in written:
+                    click.echo(str(path))
+                return
     else:
         from dgpc_cli.stages.init_quads import init_from_quads
 

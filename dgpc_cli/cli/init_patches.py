@@ -1,0 +1,110 @@
+"""``dgpc init MESH --patches auto|K``: one net per patch of the reference
+(``stages.init_patches``), written as ``STEM.p1``, ``STEM.p2``, … each with its patch mesh
+``STEM.pK.patch.obj`` as its reference."""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+import click
+
+from dgpc_cli.cli.options import show_progress
+from dgpc_cli.io.artifact import artifact_paths, file_input, relative_input
+from dgpc_cli.io.atomic import write_files
+from dgpc_cli.io.net import NetArtifact, net_files
+from dgpc_cli.io.rhino import with_3dm
+
+log = logging.getLogger(__name__)
+
+#: The most patches ``--patches K`` takes.
+MAX_COUNT = 12
+
+
+class PatchCount(click.ParamType):
+    """``auto`` (None) or a whole number of patches, 1 to :data:`MAX_COUNT`."""
+
+    name = "auto|K"
+
+    def convert(self, value, param, ctx):
+        if value is None or isinstance(value, int):
+            return value
+        text = str(value).strip().lower()
+        if text == "auto":
+            return "auto"
+        try:
+            k = int(text)
+        except ValueError:
+            k = 0
+        if not 1 <= k <= MAX_COUNT:
+            self.fail(f"{value!r} is not 'auto' or a number of patches from 1 to {MAX_COUNT}",
+                      param, ctx)
+        return k
+
+
+def _record_choice(net: NetArtifact, label: str, outcome, tried: list, options: dict) -> None:
+    """What ``init`` records of its choice on a net (as for a single net)."""
+    method = options["method"]
+    net.parameters.update(base=options["base"] or ("auto" if method == "geodesic" else None),
+                          angle=options["angle"],
+                          largest_component=options["largest_component"])
+    if options["extend"] > 0:
+        net.parameters["extend"] = options["extend"]
+    net.data["init"]["choice"] = {"chosen": label, "coverage": outcome.coverage,
+                                  "tried": tried}
+    if outcome.note:
+        log.warning("%s", outcome.note)
+
+
+def patch_nets(ctx, single: NetArtifact, mesh, patches, output: Path, options: dict, *,
+               units: str, fmt: str, force: bool) -> list[Path] | None:
+    """Make and write the patch nets of ``--patches`` (``options``: the command's mesh
+    options); the JSON paths written, or None when one patch is kept (``single`` then records
+    why, and the caller writes it as usual)."""
+    from dgpc_cli.geodesics.extension import continued
+    from dgpc_cli.stages.init_choice import choose
+    from dgpc_cli.stages.init_patches import plan, ratio_text
+    from dgpc_cli.stages.inspect import summarize
+
+    def make(m):
+        return choose(m, continued(m, options["extend"]), options["method"],
+                      base=options["base"], direction=options["direction"],
+                      angle=options["angle"], rows=options["rows"], cols=options["cols"],
+                      spacing=options["spacing"],
+                      extend_length=options["extend"] * m.bbox_diagonal)
+
+    json_path, _ = artifact_paths(output)
+    stem = json_path.with_suffix("")
+    folder = json_path.resolve().parent
+    choice = single.data["init"]["choice"]
+    count = None if patches == "auto" else int(patches)
+    nets, record = plan(mesh, count, stem, single.f, choice["chosen"], choice["coverage"],
+                        make)
+    if show_progress(ctx):
+        click.echo(f"init: {record['reason']}", err=True)
+    if not nets:
+        single.parameters["patches"] = patches
+        single.data["init"]["patches"] = record
+        return None
+    written = []
+    for k, p in enumerate(nets, start=1):
+        net = p.net
+        _record_choice(net, p.label, p.outcome, p.tried, options)
+        net.parameters["patches"] = patches
+        net.data["init"]["patches"] = {**record, "name": f"p{k}",
+                                       "own_cuts": [c.tolist() for c in p.patch.cuts]}
+        net.inputs["mesh"] = file_input(mesh.path, folder)
+        net.inputs["reference"] = net.data["reference"] = relative_input(p.mesh.path, folder,
+                                                                          p.obj)
+        net.units = units
+        net.parameters["units"] = units
+        net.metrics = summarize(net, mesh=p.mesh)
+        out = stem.parent / f"{stem.name}.p{k}"
+        files = {p.mesh.path: p.obj, **with_3dm(net_files(out, net), out, fmt)}
+        write_files(files, force=force)
+        if show_progress(ctx):
+            click.echo(f"init: {out.name}: {p.label}, {net.shape[0]} x {net.shape[1]} net "
+                       f"covering {100 * p.outcome.coverage:.1f} % of its patch, strips "
+                       f"varying up to {ratio_text(p.width['ratio'])} in width", err=True)
+        written.append(artifact_paths(out)[0])
+    return written
