@@ -5,7 +5,6 @@ Built here so that the tests own them."""
 from __future__ import annotations
 
 import numpy as np
-
 from outline_meshes import _grid_faces
 
 #: Two lobes: plan LOBES_SIZE (x × y, metres), lobe centres at x = ±LOBE_OFFSET, height and

@@ -146,7 +146,7 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
                    "with its patch STEM.pK.patch.obj as its reference, so that `optimize "
                    "--mode fit` and `planarize-strips --trim` keep to the patch); 'auto': only "
                    "where the single net's strips vary in width more than 3x along them "
-                   "(else one net, STEM). stdout lists the nets; data.init.patches says why.")
+                   "(else one net, STEM). stdout lists the nets; data.patches says why.")
 @click.option("--rows", "rows", type=click.IntRange(min=3),
               help="m: vertices along the geodesics (required with --surface; default with a "
                    "mesh: square quads).")

@@ -10,6 +10,7 @@ from pathlib import Path
 import click
 
 from dgpc_cli.cli.options import show_progress
+from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths, file_input, relative_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import NetArtifact, net_files
@@ -48,7 +49,7 @@ def _record_choice(net: NetArtifact, label: str, outcome, tried: list, options: 
     net.parameters.update(base=options["base"] or ("auto" if method == "geodesic" else None),
                           angle=options["angle"],
                           largest_component=options["largest_component"])
-    if options["extend"] > 0:
+    if options["extend"] > 0 and "extend" not in net.parameters:
         net.parameters["extend"] = options["extend"]
     net.data["init"]["choice"] = {"chosen": label, "coverage": outcome.coverage,
                                   "tried": tried}
@@ -61,17 +62,31 @@ def patch_nets(ctx, single: NetArtifact, mesh, patches, output: Path, options: d
     """Make and write the patch nets of ``--patches`` (``options``: the command's mesh
     options); the JSON paths written, or None when one patch is kept (``single`` then records
     why, and the caller writes it as usual)."""
-    from dgpc_cli.geodesics.extension import continued
+    from dgpc_cli.geodesics.extension import continued, largest_unfolded
     from dgpc_cli.stages.init_choice import choose
     from dgpc_cli.stages.init_patches import plan, ratio_text
     from dgpc_cli.stages.inspect import summarize
 
     def make(m):
-        return choose(m, continued(m, options["extend"]), options["method"],
-                      base=options["base"], direction=options["direction"],
-                      angle=options["angle"], rows=options["rows"], cols=options["cols"],
-                      spacing=options["spacing"],
-                      extend_length=options["extend"] * m.bbox_diagonal)
+        # --extend is a fraction of the whole mesh's diagonal: the same length on every patch,
+        # as far as the patch's continuation does not fold at its concave boundary
+        fraction = options["extend"] * mesh.bbox_diagonal / m.bbox_diagonal
+        try:
+            domain = continued(m, fraction)
+        except DgpcError:
+            fraction = largest_unfolded(m, fraction)
+            log.warning("%s: --extend %g folds the patch's continuation at its concave "
+                        "boundary; extended by %.3g of the patch's diagonal instead",
+                        m.path.name, options["extend"], fraction)
+            domain = continued(m, fraction)
+        grid, outcome, tried = choose(
+            m, domain, options["method"], base=options["base"],
+            direction=options["direction"], angle=options["angle"], rows=options["rows"],
+            cols=options["cols"], spacing=options["spacing"],
+            extend_length=fraction * m.bbox_diagonal)
+        if fraction > 0:
+            grid.net.parameters["extend"] = fraction
+        return grid, outcome, tried
 
     json_path, _ = artifact_paths(output)
     stem = json_path.with_suffix("")
@@ -84,15 +99,15 @@ def patch_nets(ctx, single: NetArtifact, mesh, patches, output: Path, options: d
         click.echo(f"init: {record['reason']}", err=True)
     if not nets:
         single.parameters["patches"] = patches
-        single.data["init"]["patches"] = record
+        single.data["patches"] = record
         return None
     written = []
     for k, p in enumerate(nets, start=1):
         net = p.net
         _record_choice(net, p.label, p.outcome, p.tried, options)
         net.parameters["patches"] = patches
-        net.data["init"]["patches"] = {**record, "name": f"p{k}",
-                                       "own_cuts": [c.tolist() for c in p.patch.cuts]}
+        net.data["patches"] = {**record, "name": f"p{k}",
+                               "own_cuts": [c.tolist() for c in p.patch.cuts]}
         net.inputs["mesh"] = file_input(mesh.path, folder)
         net.inputs["reference"] = net.data["reference"] = relative_input(p.mesh.path, folder,
                                                                           p.obj)

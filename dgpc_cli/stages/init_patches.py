@@ -14,9 +14,9 @@ widest over the narrowest of its rows on the reference, the worst strip's. At mo
 bisected as long as its ratio is above the limit, the bisection lowers it, and there are fewer
 than :data:`MAX_PATCHES` patches.
 
-Every net records why (``data.init.patches``): the single net's candidate, coverage and width
-ratio, the limit, K, every cut (its curves, in the net's unit, and figures) and every patch's
-area, coverage and width ratio.
+Every net records why (``data.patches``, carried on by ``optimize``): the single net's
+candidate, coverage and width ratio, the limit, K, every cut (its curves, in the net's unit,
+and figures) and every patch's area, coverage and width ratio.
 """
 
 from __future__ import annotations
@@ -136,17 +136,17 @@ def plan(mesh: ReferenceMesh, count: int | None, stem: Path, single: np.ndarray,
     if count is not None:
         patches, cuts = split(mesh.vertices, mesh.faces, count)
         nets = [_patch_net(p, path(k + 1), make, mesh) for k, p in enumerate(patches)]
-        why = (f"--patches {count}; the single net's strips vary in width up to {ratio_text(ratio)} "
-               f"along them (strip {first['strip']})")
+        why = (f"--patches {count}; the single net's strips vary in width up to "
+               f"{ratio_text(ratio)} along them (strip {first['strip']})")
     else:
         nets, cuts, stop = _auto(whole, ratio, path, make, mesh)
         if not nets:
             record.update(count=1, cuts=[], reason=(
-                f"the single net's strips vary in width up to {ratio_text(ratio)} along them (strip "
-                f"{first['strip']}), more than {WIDTH_RATIO_LIMIT:g}x, but {stop}: one patch"))
+                f"the single net's strips vary in width up to {ratio_text(ratio)} along them "
+                f"(strip {first['strip']}), more than {WIDTH_RATIO_LIMIT:g}x, but {stop}: one patch"))
             return [], record
-        why = (f"the single net's strips vary in width up to {ratio_text(ratio)} along them (strip "
-               f"{first['strip']}), more than {WIDTH_RATIO_LIMIT:g}x: {len(nets)} patches; "
+        why = (f"the single net's strips vary in width up to {ratio_text(ratio)} along them "
+               f"(strip {first['strip']}), more than {WIDTH_RATIO_LIMIT:g}x: {len(nets)} patches; "
                + stop)
     ordered = order_patches([p.patch for p in nets], mesh.vertices)
     nets = [next(p for p in nets if p.patch is q) for q in ordered]
@@ -200,7 +200,8 @@ def _auto(whole: Patch, ratio: float, path, make: NetMaker, mesh: ReferenceMesh)
         pb = _patch_net(b, path(serial), make, mesh)
         new = max(_key(pa.width["ratio"]), _key(pb.width["ratio"]))
         if new >= _key(worst):
-            stop = (f"cutting the worst patch gives {ratio_text(new)}, no better than {ratio_text(worst)}")
+            stop = (f"cutting the worst patch gives {ratio_text(new)}, no better than "
+                    f"{ratio_text(worst)}")
             break
         cuts.append({"curves": curves, **rec})
         current[k:k + 1] = [(a, pa.width["ratio"], pa), (b, pb.width["ratio"], pb)]

@@ -136,6 +136,8 @@ def optimized_artifact(prepared: PreparedNet, outcome: OptimizeOutcome, output: 
     # the analytic surface (and its axis, for Clairaut) still carries the net only when the net
     # was fitted to it; the other modes move the net off it
     data = {k: v for k, v in net.data.items() if k == "surface" and s.mode == "fit"}
+    if "patches" in net.data:      # init --patches: why the reference was split, and where
+        data["patches"] = net.data["patches"]
     if mesh is not None:
         inputs["reference"] = data["reference"] = file_input(mesh.path, folder)
     if handle_ids is not None:

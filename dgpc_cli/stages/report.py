@@ -8,7 +8,9 @@ show the model in three framed views with a scale bar (:mod:`dgpc_cli.report.vie
   reference mesh that is still there (``data.reference``): the net over the reference, the
   uncovered part of the reference in orange; ``PREFIX-strain.png`` when the net comes from
   ``optimize --mode isometric`` and its input net (``inputs.net``) is still there unchanged
-  (Fig. 13: principal directions over |λ1| + |λ2|); ``PREFIX-clairaut.png`` when the net
+  (Fig. 13: principal directions over |λ1| + |λ2|); ``PREFIX-patches.png`` when the net was
+  made on one patch of a split reference (``init --patches``, ``data.patches``): its patch
+  in the whole mesh and the cut curves in red; ``PREFIX-clairaut.png`` when the net
   records an axis in ``data.surface.axis`` (Fig. 11, the geodesics the metric checks);
   ``PREFIX-convergence.png`` when it records a solver history (``status.steps``);
 * strips: ``PREFIX-width.png``, the planar-quad strips coloured by their width; when the net
@@ -135,6 +137,47 @@ def _reference(net, json_path: Path):
                      record.get("area_fraction"))
 
 
+def _whole_mesh(net, json_path: Path, depth: int = 4):
+    """The whole mesh a patch net was cut from (``inputs.mesh``, of the net or of the nets it
+    was made from), if it is there unchanged; else None."""
+    from dgpc_cli.io.artifact import recorded_file, resolve_input
+    from dgpc_cli.io.mesh import load_mesh
+    from dgpc_cli.io.net import read_net
+
+    for _ in range(depth):
+        record = net.inputs.get("mesh")
+        if isinstance(record, dict) and resolve_input(record, json_path).is_file():
+            return load_mesh(recorded_file(record, json_path, "inputs.mesh"))
+        record = net.inputs.get("net")
+        if not isinstance(record, dict) or not resolve_input(record, json_path).is_file():
+            return None
+        json_path = recorded_file(record, json_path, "inputs.net")
+        net = read_net(json_path)
+    return None
+
+
+def _patches_entry(net, json_path: Path, split: dict, view: dict):
+    """The figure of a patch net (``init --patches``): its patch in the whole mesh, the cuts."""
+    from dgpc_cli.report.patches import patches_figure
+    from dgpc_cli.stages.inspect import recorded_reference
+
+    patch = recorded_reference(net, json_path)
+    whole = _whole_mesh(net, json_path)
+    curves = [c for cut in split["cuts"] for c in cut.get("curves", [])]
+    single = split.get("single") or {}
+    ratio = single.get("width_ratio")
+    caption = (f"The reference split into {split.get('count')} patches along the red curves: "
+               f"{split.get('reason', '')}. This net ({split.get('name', '?')}) clads the blue "
+               "patch; `planarize-strips --trim` clips its strips to that patch's outline.")
+    title = (f"patch {split.get('name', '?')} of {split.get('count')}"
+             + (f" (one net: strips vary {ratio:.2f}x)" if isinstance(ratio, float) else ""))
+    return ("patches", caption,
+            lambda: patches_figure(net.f, None if patch is None else (patch.vertices,
+                                                                       patch.faces),
+                                   None if whole is None else (whole.vertices, whole.faces),
+                                   curves, title=title, **view))
+
+
 def _recorded_clairaut(metrics: dict) -> dict | None:
     """The artifact's own Clairaut metric (the figure shows its numbers), if it has one."""
     record = metrics.get("clairaut")
@@ -178,6 +221,9 @@ def _net_page(json_path: Path) -> Page:
                                               label=f"strip width [{u}]",
                                               title=f"net over its reference ({share:.1f} % "
                                                     "covered)", reference=reference, **view)))
+    split = net.data.get("patches")
+    if isinstance(split, dict) and split.get("cuts"):
+        figs.append(_patches_entry(net, json_path, split, view))
     against = _isometry_input(net, json_path)
     if against is not None:
         figs.append(("strain", "Strain against the input net of the isometric optimization "
