@@ -143,7 +143,8 @@ def plan(mesh: ReferenceMesh, count: int | None, stem: Path, single: np.ndarray,
         if not nets:
             record.update(count=1, cuts=[], reason=(
                 f"the single net's strips vary in width up to {ratio_text(ratio)} along them "
-                f"(strip {first['strip']}), more than {WIDTH_RATIO_LIMIT:g}x, but {stop}: one patch"))
+                f"(strip {first['strip']}), more than {WIDTH_RATIO_LIMIT:g}x, but {stop}: "
+                "one patch"))
             return [], record
         why = (f"the single net's strips vary in width up to {ratio_text(ratio)} along them "
                f"(strip {first['strip']}), more than {WIDTH_RATIO_LIMIT:g}x: {len(nets)} patches; "
