@@ -205,3 +205,14 @@ def test_end_gap_warning_takes_a_strip_trimmed_away():
            "per_strip": {"S-v00": {"end_gaps": [5.0, 1.0]}, "S-v01": {"end_gaps": [None, None]}}}
     (line,) = fabrication_warnings(fab)
     assert "(S-v00)" in line
+
+
+def test_a_batch_refuses_patches_in_its_init(tmp_path):
+    """A batch patch is one net: ``patches`` in a project's init table is refused, pointing to
+    the patch meshes ``init --patches`` writes."""
+    from dgpc_cli.batch.project import RESERVED
+
+    assert "STEM.pK.patch.obj" in RESERVED["patches"]
+    (tmp_path / "p.toml").write_text("[patches.a.init]\npatches = 2\n")
+    r = dgpc("batch", tmp_path / "p.toml", "-o", tmp_path / "out", expect=1)
+    assert "patches.a.init.patches: not in a project file" in r.stderr

@@ -49,7 +49,9 @@ SHARED_STAGES = ("extract-mold", "nest")
 #: Options the batch sets itself (or that would write outside the output folder).
 RESERVED = {"output": "the batch names every output",
             "force": "the batch overwrites what it recomputes",
-            "reference-out": "a batch writes only into its output folder"}
+            "reference-out": "a batch writes only into its output folder",
+            "patches": "a batch patch is one net: split the mesh with `dgpc init --patches` "
+                       "and name each STEM.pK.patch.obj as a patch's init reference"}
 #: Folder of the shared stages' artifacts in the output folder (no patch may be called so).
 SHARED = "shared"
 #: The batch's own files in the output folder (no patch may be called so).
