@@ -216,3 +216,15 @@ def test_a_batch_refuses_patches_in_its_init(tmp_path):
     (tmp_path / "p.toml").write_text("[patches.a.init]\npatches = 2\n")
     r = dgpc("batch", tmp_path / "p.toml", "-o", tmp_path / "out", expect=1)
     assert "patches.a.init.patches: not in a project file" in r.stderr
+
+
+def test_a_mesh_too_small_for_k_patches_is_one_line_exit_1(tmp_path):
+    from outline_meshes import _grid_faces
+
+    x, y = np.meshgrid(np.linspace(0, 4, 7), np.linspace(0, 3, 6), indexing="ij")
+    V = np.stack([x.ravel(), y.ravel(), 0.1 * x.ravel() ** 2], 1)
+    mesh = write(tmp_path / "small.obj", (V, _grid_faces(6, 5)))
+    r = dgpc("init", mesh, "--method", "geodesic", "--cols", 3, "--patches", 12,
+             "-o", tmp_path / "s", expect=1)
+    assert "cannot cut the mesh into 12 patches" in r.stderr and "too small" in r.stderr
+    assert r.stderr.count("\n") <= 3 and "Traceback" not in r.stderr

@@ -21,6 +21,7 @@ and figures) and every patch's area, coverage and width ratio.
 
 from __future__ import annotations
 
+import hashlib
 import logging
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -95,8 +96,6 @@ NetMaker = Callable[[ReferenceMesh], tuple]
 def _patch_net(patch: Patch, path: Path, make: NetMaker, whole: ReferenceMesh) -> PatchNet:
     V, F = clean_mesh(patch.vertices, patch.faces)
     obj = write_mesh_obj(path, V, F)
-    import hashlib
-
     mesh = ReferenceMesh(V, F, Path(path), hashlib.sha256(obj).hexdigest())
     try:
         grid, outcome, tried = make(mesh)
@@ -134,7 +133,11 @@ def plan(mesh: ReferenceMesh, count: int | None, stem: Path, single: np.ndarray,
 
     whole = Patch(mesh.vertices, mesh.faces)
     if count is not None:
-        patches, cuts = split(mesh.vertices, mesh.faces, count)
+        try:
+            patches, cuts = split(mesh.vertices, mesh.faces, count)
+        except ValueError as err:
+            raise DgpcError(f"cannot cut the mesh into {count} patches: {err}",
+                            source=mesh.path) from None
         nets = [_patch_net(p, path(k + 1), make, mesh) for k, p in enumerate(patches)]
         why = (f"--patches {count}; the single net's strips vary in width up to "
                f"{ratio_text(ratio)} along them (strip {first['strip']})")
@@ -170,8 +173,6 @@ def _renamed(p: PatchNet, path: Path) -> PatchNet:
     if p.mesh.path == path:
         return p
     obj = write_mesh_obj(path, p.mesh.vertices, p.mesh.faces)
-    import hashlib
-
     mesh = ReferenceMesh(p.mesh.vertices, p.mesh.faces, path, hashlib.sha256(obj).hexdigest())
     return PatchNet(p.patch, mesh, obj, p.net, p.outcome, p.tried, p.width, p.label)
 

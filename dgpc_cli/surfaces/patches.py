@@ -30,6 +30,8 @@ LEVELS, LOW, HIGH = 21, 0.25, 0.75
 #: A level lies in the widest gap between the sorted values of φ within this many vertices of
 #: its percentile, so that no vertex lies (nearly) on the cut.
 GAP_WINDOW = 8
+#: A patch with fewer vertices is not cut further.
+MIN_VERTICES = 30
 
 
 @dataclass
@@ -234,6 +236,9 @@ def bisect(patch: Patch) -> tuple[Patch, Patch, list[np.ndarray], dict]:
     """The two patches ``φ < c`` and ``φ > c`` of the best cut of ``patch`` (see the module),
     the cut curves (polylines) and the cut's record."""
     V, F = np.asarray(patch.vertices, float), np.asarray(patch.faces, np.int64)
+    if len(V) < MIN_VERTICES:
+        raise ValueError(f"a patch of {len(V)} vertices is too small to cut (fewer than "
+                         f"{MIN_VERTICES})")
     phi, c, record = best_level(V, F)
     lo_v, lo_f, cut = _piece(V, F, c - phi)
     hi_v, hi_f, _ = _piece(V, F, phi - c)
