@@ -7,9 +7,9 @@ weights, each damped by the crease across its edge, ``exp(−θ / θ̄)`` (θ th
 normals of the edge's two faces, θ̄ its area-weighted mean over the interior edges). The Fiedler
 vector varies slowly inside a lobe and fast across the valleys and crests between lobes (spectral
 mesh segmentation, Liu and Zhang 2004). Its level sets at 21 levels between the 25th and 75th
-area percentiles are scored by their isoperimetric ratio (the cut's length times the sum of the
-reciprocal areas on each side: the shortest cut that leaves two large pieces, the neck between
-two lobes; both sides kept connected); each level
+area percentiles, and those of the next eigenvector, are scored by their isoperimetric ratio
+(the cut's length times the sum of the reciprocal areas on each side: the shortest cut that
+leaves two large pieces, the neck between two lobes; both sides kept connected); each level
 lies in the widest gap between the sorted vertex values near its percentile (no sliver
 triangles), and the mesh is cut exactly along the best one
 (``trimesh.intersections.slice_faces_plane``, the field standing in for the signed distance to
@@ -30,6 +30,9 @@ LEVELS, LOW, HIGH = 21, 0.25, 0.75
 #: A level lies in the widest gap between the sorted values of φ within this many vertices of
 #: its percentile, so that no vertex lies (nearly) on the cut.
 GAP_WINDOW = 8
+#: Eigenvectors whose level sets are tried: the Fiedler vector and the next (on a symmetric
+#: mesh one of them is often symmetric, the other cuts along the plane of symmetry).
+FIELDS = 2
 #: A patch with fewer vertices is not cut further.
 MIN_VERTICES = 30
 
@@ -88,16 +91,17 @@ def _edge_weights(V: np.ndarray, F: np.ndarray):
     return pairs, w, w * crease
 
 
-def fiedler(V: np.ndarray, F: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The crease-damped Fiedler vector ``φ (k,)`` of the mesh (see the module), scaled to
-    ``max |φ| = 1``, the graph's edges and their plain cotangent weights (what a cut costs)."""
+def fiedler(V: np.ndarray, F: np.ndarray, count: int = 1) -> list[np.ndarray]:
+    """The crease-damped Fiedler vector ``φ (k,)`` of the mesh (see the module) and the
+    ``count − 1`` eigenvectors after it, each scaled to ``max |φ| = 1`` with that entry
+    positive."""
     import igl
     from scipy.sparse import coo_array, diags
     from scipy.sparse.linalg import eigsh
 
     V = np.asarray(V, float)
     F = np.asarray(F, np.int64)
-    pairs, plain, w = _edge_weights(V, F)
+    pairs, _, w = _edge_weights(V, F)
     k = len(V)
     W = coo_array((np.concatenate([w, w]), (np.concatenate([pairs[:, 0], pairs[:, 1]]),
                                             np.concatenate([pairs[:, 1], pairs[:, 0]]))),
@@ -106,13 +110,13 @@ def fiedler(V: np.ndarray, F: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nd
     M = igl.massmatrix(V, F, igl.MASSMATRIX_TYPE_VORONOI).tocsc()
     v0 = np.linspace(1.0, 2.0, k)
     scale = float(M.diagonal().mean())
-    vals, vecs = eigsh(L, k=2, M=M, sigma=-1e-6 * float(L.diagonal().mean()) / scale,
+    vals, vecs = eigsh(L, k=count + 1, M=M, sigma=-1e-6 * float(L.diagonal().mean()) / scale,
                        which="LM", v0=v0)
-    phi = vecs[:, int(np.argsort(vals)[1])]
-    phi = phi / np.abs(phi).max()
-    if phi[int(np.argmax(np.abs(phi)))] < 0:
-        phi = -phi
-    return phi, pairs, plain
+    out = []
+    for i in np.argsort(vals)[1:count + 1]:
+        phi = vecs[:, int(i)] / np.abs(vecs[:, int(i)]).max()
+        out.append(-phi if phi[int(np.argmax(np.abs(phi)))] < 0 else phi)
+    return out
 
 
 def _connected(F: np.ndarray, keep: np.ndarray, count: int) -> bool:
@@ -153,34 +157,35 @@ def best_level(V: np.ndarray, F: np.ndarray) -> tuple[np.ndarray, float, dict]:
     (isoperimetric ratio of the cut, area share of the side ``φ < c``)."""
     import igl
 
-    phi, _, _ = fiedler(V, F)
     mass = igl.massmatrix(np.asarray(V, float), np.asarray(F, np.int64),
                           igl.MASSMATRIX_TYPE_VORONOI).diagonal()
-    order = np.argsort(phi, kind="stable")
-    cum = np.cumsum(mass[order]) / mass.sum()
     best = None
-    for q in np.linspace(LOW, HIGH, LEVELS):
-        i = int(np.searchsorted(cum, q))
-        lo, hi = max(i - GAP_WINDOW, 0), min(i + GAP_WINDOW, len(order) - 1)
-        gaps = np.diff(phi[order[lo:hi + 1]])
-        j = lo + int(np.argmax(gaps))
-        c = 0.5 * (phi[order[j]] + phi[order[j + 1]])
-        below = phi < c
-        a_lo = float(mass[below].sum())
-        a_hi = float(mass.sum()) - a_lo
-        if a_lo <= 0 or a_hi <= 0:
-            continue
-        score = cut_length(V, F, phi, c) * (1.0 / a_lo + 1.0 / a_hi)
-        side = below[F]
-        if not (_connected(F, side.all(axis=1), len(V))
-                and _connected(F, (~side).all(axis=1), len(V))):
-            continue
-        if best is None or score < best[0] - 1e-12 * abs(best[0]):
-            best = (score, float(c), a_lo / float(mass.sum()))
+    for which, phi in enumerate(fiedler(V, F, FIELDS), start=1):
+        order = np.argsort(phi, kind="stable")
+        cum = np.cumsum(mass[order]) / mass.sum()
+        for q in np.linspace(LOW, HIGH, LEVELS):
+            i = int(np.searchsorted(cum, q))
+            lo, hi = max(i - GAP_WINDOW, 0), min(i + GAP_WINDOW, len(order) - 1)
+            gaps = np.diff(phi[order[lo:hi + 1]])
+            j = lo + int(np.argmax(gaps))
+            c = 0.5 * (phi[order[j]] + phi[order[j + 1]])
+            below = phi < c
+            a_lo = float(mass[below].sum())
+            a_hi = float(mass.sum()) - a_lo
+            if a_lo <= 0 or a_hi <= 0:
+                continue
+            score = cut_length(V, F, phi, c) * (1.0 / a_lo + 1.0 / a_hi)
+            if best is not None and not score < best[0] - 1e-12 * abs(best[0]):
+                continue
+            side = below[F]
+            if not (_connected(F, side.all(axis=1), len(V))
+                    and _connected(F, (~side).all(axis=1), len(V))):
+                continue
+            best = (score, phi, float(c), a_lo / float(mass.sum()), which)
     if best is None:
-        raise ValueError("no level of the mesh's Fiedler vector cuts it into two pieces")
-    score, c, share = best
-    return phi, c, {"cut_ratio": score, "area_share": share}
+        raise ValueError("no level of the mesh's Fiedler vectors cuts it into two pieces")
+    score, phi, c, share, which = best
+    return phi, c, {"cut_ratio": score, "area_share": share, "eigenvector": which}
 
 
 def _polylines(segments: np.ndarray) -> list[np.ndarray]:
