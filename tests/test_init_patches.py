@@ -228,3 +228,17 @@ def test_a_mesh_too_small_for_k_patches_is_one_line_exit_1(tmp_path):
              "-o", tmp_path / "s", expect=1)
     assert "cannot cut the mesh into 12 patches" in r.stderr and "too small" in r.stderr
     assert r.stderr.count("\n") <= 3 and "Traceback" not in r.stderr
+
+
+def test_existing_patch_nets_are_kept_without_force(meshes, tmp_path):
+    """A second run without --force refuses before writing anything (exit 1, one line), and
+    leaves the first run's files as they were; with --force it writes them again."""
+    _, lobes, _ = meshes
+    dgpc("init", lobes, *ALONG, "--patches", 2, "-o", tmp_path / "a")
+    (tmp_path / "a.p1.json").unlink()
+    before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+    r = dgpc("init", lobes, *ALONG, "--patches", 2, "-o", tmp_path / "a", expect=1)
+    assert "already exists; use --force" in r.stderr and "a.p1" in r.stderr
+    assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
+    dgpc("init", lobes, *ALONG, "--patches", 2, "-o", tmp_path / "a", "--force")
+    assert (tmp_path / "a.p1.json").is_file()

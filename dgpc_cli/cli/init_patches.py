@@ -9,7 +9,7 @@ from pathlib import Path
 
 import click
 
-from dgpc_cli.cli.options import show_progress
+from dgpc_cli.cli.options import check_writable, show_progress
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths, file_input, relative_input
 from dgpc_cli.io.atomic import write_files
@@ -101,6 +101,8 @@ def patch_nets(ctx, single: NetArtifact, mesh, patches, output: Path, options: d
         single.parameters["patches"] = patches
         single.data["patches"] = record
         return None
+    for k, p in enumerate(nets, start=1):     # every target checked before any is written
+        check_writable(stem.parent / f"{stem.name}.p{k}", force, p.mesh.path)
     written = []
     for k, p in enumerate(nets, start=1):
         net = p.net
