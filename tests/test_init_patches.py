@@ -51,6 +51,10 @@ def test_two_lobes_are_cut_along_the_valley():
     assert centres[0][0] < -LOBE_OFFSET / 2 and centres[1][0] > LOBE_OFFSET / 2
     # each patch keeps the cut on its boundary
     assert all(len(p.cuts) == 1 for p in patches)
+    # three patches: the largest half cut again; the middle patch has both cuts on its boundary
+    three, cuts = split(V, F, 3)
+    assert len(cuts) == 2 and [len(p.cuts) for p in three] == [1, 2, 1]
+    assert sum(p.area for p in three) == pytest.approx(_area(V, F), rel=1e-9)
 
 
 def test_cut_length_is_the_level_sets_length():
