@@ -165,11 +165,13 @@ def scale_warnings(parts: list[dict], geometry: list, units: str, stock_length) 
     return out
 
 
-def template_dxfs(parts: list[dict], classes: list[dict]) -> dict[str, bytes]:
+def template_dxfs(parts: list[dict], classes: list[dict], label_style: str = "text"
+                  ) -> dict[str, bytes]:
     """Class id -> the DXF bytes of its template (:mod:`dgpc_cli.nesting.template`): the
-    representative of every class, from the records of :func:`unfold_strips` (mm)."""
+    representative of every class, from the records of :func:`unfold_strips` (mm), labelled
+    with the class, its quantity and its copies' ids in ``label_style``."""
     by_id = {p["id"]: p for p in parts}
-    return {c["id"]: template_drawing(by_id[c["representative"]], c["id"]).to_bytes(
+    return {c["id"]: template_drawing(by_id[c["representative"]], c, label_style).to_bytes(
         f"template {c['id']}") for c in classes}
 
 
