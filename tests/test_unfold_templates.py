@@ -276,3 +276,26 @@ def test_bad_lengths_are_usage_errors(chain, tmp_path, args):
     res = dgpc("unfold", chain / "chain", *extra, *args, "-o", tmp_path / "f", expect=2)
     assert args[0] in res.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+def test_force_with_fewer_templates_removes_the_old_template_dxfs_only(chain, tmp_path):
+    """A rerun with --force that finds fewer classes removes the template DXFs the previous
+    artifact listed and the new one does not write; files it did not list (a user's
+    ``flat.C09.dxf``, ``flat.notes.dxf``) stay."""
+    dgpc("unfold", chain / "chain", "-o", tmp_path / "flat")
+    before = read_flat(tmp_path / "flat")
+    assert len(before.classes) >= 2
+    old = {tmp_path / f"flat.{c['id']}.dxf" for c in before.classes}
+    assert all(p.is_file() for p in old)
+    mine = [tmp_path / "flat.C09.dxf", tmp_path / "flat.notes.dxf"]
+    for p in mine:
+        p.write_bytes(b"mine")
+    dgpc("unfold", chain / "chain", "--congruence-tol", "5mm", "-o", tmp_path / "flat",
+         "--force")
+    after = read_flat(tmp_path / "flat")
+    assert [c["id"] for c in after.classes] == ["C01"]
+    dxfs = sorted(p.name for p in tmp_path.glob("flat.C*.dxf"))
+    assert dxfs == ["flat.C01.dxf", "flat.C09.dxf"]
+    assert all(p.read_bytes() == b"mine" for p in mine)
+    rows = list(csv.DictReader((tmp_path / "flat.parts.csv").open()))
+    assert [r["dxf"] for r in rows] == ["flat.C01.dxf"]
