@@ -299,3 +299,25 @@ def test_force_with_fewer_templates_removes_the_old_template_dxfs_only(chain, tm
     assert all(p.read_bytes() == b"mine" for p in mine)
     rows = list(csv.DictReader((tmp_path / "flat.parts.csv").open()))
     assert [r["dxf"] for r in rows] == ["flat.C01.dxf"]
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_kabsch_recovers_a_rigid_motion_and_refuses_a_mirror_unless_allowed(dim):
+    """The one Kabsch of the package, in the plane (developed parts) and in space: a rotated
+    and moved point set comes back exactly; its mirror image gets the best rotation (an error
+    left), or the reflection itself when reflections are allowed."""
+    from dgpc_cli.strips.congruence import kabsch
+
+    rng = np.random.default_rng(3)
+    X = rng.normal(size=(12, dim))
+    Q, _ = np.linalg.qr(rng.normal(size=(dim, dim)))
+    Q[:, -1] *= np.sign(np.linalg.det(Q))                            # a rotation
+    t = rng.normal(size=dim)
+    R, s = kabsch(X, X @ Q.T + t, allow_reflection=False)
+    assert np.allclose(R, Q, atol=1e-12) and np.allclose(s, t, atol=1e-12)
+    M = np.diag([1.0] * (dim - 1) + [-1.0])
+    Y = X @ M.T
+    R, s = kabsch(X, Y, allow_reflection=False)
+    assert np.linalg.det(R) == pytest.approx(1.0) and np.abs(X @ R.T + s - Y).max() > 0.1
+    R, s = kabsch(X, Y, allow_reflection=True)
+    assert np.allclose(R, M, atol=1e-12) and np.abs(X @ R.T + s - Y).max() < 1e-12

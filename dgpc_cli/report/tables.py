@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import math
 
+from ..io.jsonable import dotted
+
 __all__ = ["GROUPS", "flatten", "format_value", "group_of", "item_tables", "metric_unit",
            "scalar_rows", "status_rows"]
 
@@ -162,21 +164,12 @@ def scalar_rows(metrics: dict, units: str) -> dict[str, list[tuple[str, str, str
     return out
 
 
-def _lookup(metrics: dict, key: str):
-    node = metrics
-    for part in key.split("."):
-        if not isinstance(node, dict) or part not in node:
-            return None
-        node = node[part]
-    return node
-
-
 def item_tables(metrics: dict, units: str) -> list[tuple[str, list[str], list[list[str]]]]:
     """The per-item records as tables ``(title, header, rows)``: one row per item, a column per
     field (header ``field [unit]``)."""
     tables = []
     for key, title in ITEMS.items():
-        node = _lookup(metrics, key)
+        node = dotted(metrics, key)
         if isinstance(node, dict) and node and all(isinstance(v, dict) for v in node.values()):
             fields = sorted({f for v in node.values() for f in v})
             rows = [[item] + [_cell(v.get(f)) for f in fields] for item, v in sorted(node.items())]

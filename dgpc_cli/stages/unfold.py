@@ -210,8 +210,7 @@ def _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_
             source=source)
     else:
         parts, classes = [], []
-    identity = Alignment(R=np.eye(2), t=np.zeros(2), relabel="identity", mirrored=False,
-                         error=0.0)
+    identity = Alignment.identity()
     for i, trim in enumerate(trims):
         if trim is None:
             continue
@@ -328,8 +327,7 @@ def trimmed_boards(geometry, devs, ids, columns, trims, congruence_tol, mirror_o
         class_records.append(class_record(cls.id, rep["id"],
                                           [parts[whole[n][0]]["id"] for n in cls.members],
                                           [al.error for al in cls.alignments], rep["length"]))
-    identity = Alignment(R=np.eye(2), t=np.zeros(2), relabel="identity", mirrored=False,
-                         error=0.0)
+    identity = Alignment.identity()
     for j in cut:
         cid = f"C{len(class_records) + 1:02d}"
         parts[j].update({"class": cid, "alignment": identity.record(parts[j]["length"])})
