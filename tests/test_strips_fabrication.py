@@ -296,7 +296,9 @@ def test_report_tables_label_the_fabrication_metrics_in_mm_degrees_and_m2():
              "fabrication.max_ruling_angle": "°", "fabrication.area": "m²",
              "fabrication.max_side_ratio": "", "fabrication.area_ratio": "",
              "fabrication.max_deviation_relative": "", "fabrication.units.area": "",
-             "max_deviation": "", "per_strip.deviation": "", "per_strip.width": "m"}
+             "max_deviation": "× width", "per_strip.deviation": "× width",
+             "max_planarity": "× diagonal", "per_strip.planarity": "× diagonal",
+             "per_part.deviation_mm": "mm", "per_strip.width": "m"}
     assert {k: metric_unit(k, "m") for k in units} == units
 
 

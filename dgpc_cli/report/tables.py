@@ -59,6 +59,11 @@ AREAS = {"total_area", "covered_area", "reference_area", "area"}
 #: ``relative`` in them are lengths.
 FABRICATION_UNITS = {"ruling_angle": "°", "max_ruling_angle": "°", "area": "m²",
                      "reference_area": "m²"}
+#: Metrics of a strips artifact that are relative (planarize-strips): the deviation from the
+#: net strip over the strip's width, the planarity defect over the quad's mean diagonal (their
+#: lengths in mm are the ``fabrication`` metrics').
+RELATIVE = {"deviation": "× width", "max_deviation": "× width",
+            "planarity": "× diagonal", "max_planarity": "× diagonal"}
 #: Heads whose min / max / mean are lengths.
 LENGTH_STATS = {"edges", "hausdorff", "parallel_departure", "handle_miss"}
 
@@ -85,6 +90,8 @@ def metric_unit(key: str, units: str) -> str:
         return "" if plain else "mm"
     if last in AREAS:
         return f"{units}²"
+    if last in RELATIVE and head in ("per_strip", *RELATIVE):
+        return RELATIVE[last]
     if head == "gaussian_curvature":
         return f"1/{units}²"
     if last in ("relative", "relative_mad", "max_relative_mad", "max_mad_over_radius",
@@ -97,6 +104,8 @@ def metric_unit(key: str, units: str) -> str:
         return "rad"
     if last.endswith("_deg"):
         return "°"
+    if last.endswith("_mm"):
+        return "mm"
     if last in ("pleat_max", "crease_max"):
         return "mean edges"
     return ""
