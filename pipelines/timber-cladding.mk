@@ -7,7 +7,8 @@ WALL   := $(OUT)/timber-cladding
 # The wall is 6 m tall (net units: m); its boards are cut from 6.1 m × 2.5 m LVL panels by a
 # CNC router (6 mm bit: 8 mm between parts), the ids engraved as single strokes.
 WALL_SHEET := 6100x2500
-WALL_CAM   := --tool router --tool-diameter 6mm --label-style stroke
+WALL_LABEL := --label-style stroke
+WALL_CAM   := --tool router --tool-diameter 6mm $(WALL_LABEL)
 
 $(WALL)/base.json: samples/profiles/wall.csv
 	@mkdir -p $(@D)
@@ -22,7 +23,7 @@ $(WALL)/strips.json: $(WALL)/wall.json
 	$(DGPC) planarize-strips $(basename $<) -o $(basename $@) --force
 
 $(WALL)/flat.json: $(WALL)/strips.json
-	$(DGPC) unfold $(basename $<) -o $(basename $@) --force
+	$(DGPC) unfold $(basename $<) $(WALL_LABEL) -o $(basename $@) --force
 
 $(WALL)/sheets.json: $(WALL)/flat.json
 	$(DGPC) nest $(basename $<) --sheet $(WALL_SHEET) $(WALL_CAM) -o $(basename $@) --force
@@ -37,3 +38,4 @@ $(WALL)/report-index.html: $(WALL)/wall.json $(WALL)/strips.json $(WALL)/flat.js
 pipeline-timber-cladding: setup $(WALL)/sheets.json $(WALL)/report-index.html ## Timber cladding: congruent strips, DXF cut sheets (Fig. 2, 18).
 	@echo "timber-cladding: figures $(WALL)/report-index.html"
 	@echo "timber-cladding: $$(ls $(WALL)/sheets.sheet*.dxf | tr '\n' ' ')"
+	@echo "timber-cladding: cut list $(WALL)/flat.parts.csv: $$(awk -F, 'NR > 1 {printf "%s%s x%s (%s)", (NR > 2 ? ", " : ""), $$1, $$2, $$NF}' $(WALL)/flat.parts.csv)"

@@ -201,6 +201,41 @@ def test_boards_of_a_template_are_few_templates(roof):
     assert sum(int(r["quantity"]) for r in rows) == len(boards.parts)
 
 
+@pytest.mark.parametrize("stagger", ["2m", "900mm"])
+def test_boards_with_a_stagger_are_templates_of_two_alternating_patterns(roof, tmp_path,
+                                                                          stagger):
+    """``--stagger``: the joints of neighbouring strips at least that far apart, at most two
+    joint patterns, alternating, so the boards of the six congruent strips are templates: the
+    cut list names each once, with its quantity and its copies' ids, every copy a board of the
+    same place in its pattern."""
+    gap = {"2m": 2.0, "900mm": 0.9}[stagger]
+    dgpc("unfold", roof / "strips", "--stock-length", STOCK, "--stagger", stagger,
+         "-o", tmp_path / "b")
+    flat = read_flat(tmp_path / "b")
+    assert flat.parameters["stagger"] == pytest.approx(gap)
+    joints = defaultdict(list)
+    for j in flat.joints:
+        joints[int(j["strip"][3:])].append(j["row"])
+    by_column = [tuple(joints[v]) for v in sorted(joints)]
+    assert len(by_column) == 6 and len(set(by_column)) <= 2
+    assert all(by_column[v] == by_column[v - 2] for v in range(2, len(by_column)))
+    strips = read_strips(roof / "strips")
+    for v in range(len(by_column) - 1):
+        on_b = _along(strips.geometry[v][1])[list(by_column[v])]
+        on_a = _along(strips.geometry[v + 1][0])[list(by_column[v + 1])]
+        assert np.abs(on_b[:, None] - on_a[None, :]).min() >= gap - 1e-9
+    rows = list(csv.DictReader((tmp_path / "b.parts.csv").open()))
+    assert len(rows) == len(flat.classes) == len(by_column[0]) + len(by_column[1]) + 2
+    parts = {p["id"]: p for p in flat.parts}
+    for r, c in zip(rows, flat.classes, strict=True):
+        copies = r["parts"].split()
+        assert copies == c["members"] and int(r["quantity"]) == len(copies) == 3
+        # the copies: the same board (rows) of the strips of one pattern
+        assert len({tuple(parts[i]["rows"]) for i in copies}) == 1
+        assert len({parts[i]["strip"] % 2 for i in copies}) == 1
+    assert sorted(i for r in rows for i in r["parts"].split()) == sorted(parts)
+
+
 def _trimmed(roof):
     """The roof's strips with trim records (as `planarize-strips --trim` writes them): slanted
     end cuts, and strip 2 cut in two by a hole; rings sampled every 1/8 quad, as the trim's."""

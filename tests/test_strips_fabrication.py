@@ -296,5 +296,88 @@ def test_report_tables_label_the_fabrication_metrics_in_mm_degrees_and_m2():
              "fabrication.max_ruling_angle": "°", "fabrication.area": "m²",
              "fabrication.max_side_ratio": "", "fabrication.area_ratio": "",
              "fabrication.max_deviation_relative": "", "fabrication.units.area": "",
-             "max_deviation": "", "per_strip.deviation": "", "per_strip.width": "m"}
+             "max_deviation": "× width", "per_strip.deviation": "× width",
+             "max_planarity": "× diagonal", "per_strip.planarity": "× diagonal",
+             "per_part.deviation_mm": "mm", "per_strip.width": "m"}
     assert {k: metric_unit(k, "m") for k in units} == units
+
+
+def _end_short(strips):
+    strips[1][1][0] += np.array([0.0, 2.0, 0.0])            # A of strip 1 starts 2 mm short
+
+
+def _lifted(strips):
+    strips[1][1][4, 2] += 7.0
+    strips[1][2][4, 2] += 7.0                               # ruling 4 of strip 1 lifted 7 mm
+
+
+def _stepped(strips):
+    strips[2][1][:, 2] += 4.0                               # strip 2's copy of geodesic 2
+
+
+def _apart(strips):
+    strips[2][1][:, 0] += 2.0                               # ... moved 2 mm across
+
+
+def _zigzag(strips):
+    strips[1][1][3, 1] += 0.5 * W                           # ruling 3 slanted by 26.6°
+
+
+def _pinched(strips):
+    _, A, _ = strips[1]
+    A[4] = A[3] + 0.05 * (A[4] - A[3])                      # quad 3's side on P 15 mm
+
+
+def _twisted(strips):
+    strips[1][1][2, 2] += 1e-3                              # one corner 1 µm off its plane
+
+
+#: metric -> (the change that fails it, the figure's key in the summary, its per-strip key,
+#: the bound it must exceed: the issue's, in mm or degrees, on strips 350 mm wide)
+FAILS = {
+    "end gap": (_end_short, "max_end_gap", "end_gaps", 1.0),
+    "deviation": (_lifted, "max_deviation", "deviation", 0.015 * W),
+    "seam step": (_stepped, "max_seam_step", "seam_step", 0.01 * W),
+    "seam gap": (_apart, "max_seam_gap", "seam_gap", 1.0),
+    "ruling angle": (_zigzag, "max_ruling_angle", "ruling_angle", 20.0),
+    "side ratio": (_pinched, "max_side_ratio", "side_ratio", 10.0),
+    "planarity": (_twisted, "max_planarity", "planarity", 1e-9 * W),
+}
+
+
+def _worst(value):
+    if isinstance(value, list):
+        return max((abs(x) for x in value if x is not None), default=0.0)
+    return abs(value)
+
+
+@pytest.mark.parametrize("metric", list(FAILS))
+def test_each_metric_flags_the_strip_built_to_fail_it(metric):
+    """On the flat net every figure is within the issue's bounds; each change fails its own
+    figure, beyond the bound, at the strip it was made on (and at its neighbour for a seam)
+    and nowhere else."""
+    change, key, per_key, bound = FAILS[metric]
+    f = flat_net()
+    good = measured(f, strips_of(f))
+    assert good[key] <= bound
+    strips = strips_of(f)
+    change(strips)
+    s = measured(f, strips)
+    assert s[key] > bound, (metric, s[key])
+    flagged = {sid for sid, r in s["per_strip"].items() if _worst(r[per_key]) > bound}
+    seam = per_key.startswith("seam")
+    assert flagged == ({"S-v01", "S-v02"} if seam else {"S-v01"}), (metric, flagged)
+    assert max(_worst(r[per_key]) for r in s["per_strip"].values()) == pytest.approx(s[key])
+
+
+def test_planarize_warns_of_an_end_gap_above_a_millimetre_only():
+    from dgpc_cli.stages.strip_fabrication import fabrication_warnings
+
+    f = flat_net()
+    assert fabrication_warnings(measured(f, strips_of(f))) == []
+    strips = strips_of(f)
+    strips[1][1][0] += np.array([0.0, 0.9, 0.0])            # 0.9 mm short: no warning
+    assert fabrication_warnings(measured(f, strips)) == []
+    strips[1][1][0] += np.array([0.0, 0.2, 0.0])            # 1.1 mm short
+    (line,) = [w for w in fabrication_warnings(measured(f, strips)) if "edge rows" in w]
+    assert "up to 1.1 mm" in line and "(S-v01)" in line

@@ -11,6 +11,7 @@ import ezdxf
 import numpy as np
 import pytest
 from cli_helpers import dgpc
+from dxf_checks import check_cam_ready
 
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.flat import read_flat
@@ -161,8 +162,63 @@ def test_one_dxf_per_template_reads_back_to_its_representative(chain):
         assert np.abs(outline - (rep - rep.min(axis=0))).max() <= 1e-6       # mm
         scores = msp.query("LWPOLYLINE[layer=='SCORE']")
         assert len(scores) == len(flat.part(c["representative"])["score"])
-        assert [t.dxf.text for t in msp.query("TEXT")] == [c["id"]]
+        # labelled as on a sheet: the class and its quantity, then every copy's id once
+        texts = [t.dxf.text for t in msp.query("TEXT")]
+        assert texts[0] == f"{c['id']} x{c['quantity']}"
+        assert " ".join(texts[1:]).split() == c["members"]
         assert {e.dxf.layer for e in msp} <= {"CUT", "SCORE", "LABEL"}
+        assert check_cam_ready(chain / name)["CUT:LWPOLYLINE"] == 1
+
+
+def test_template_dxfs_take_the_label_style_and_layers_of_the_sheets(chain, tmp_path):
+    """``unfold --label-style stroke``: the labels as single strokes on ENGRAVE, as ``nest
+    --label-style stroke`` draws a sheet (the same layer table), inside the part clear of
+    every cut and score line; the geometry is that of the text style's drawing."""
+    dgpc("unfold", chain / "chain", "--label-style", "stroke", "-o", tmp_path / "flat")
+    dgpc("nest", tmp_path / "flat", "--sheet", "6100x2500", "--label-style", "stroke",
+         "--no-preview", "-o", tmp_path / "sheets")
+    flat = read_flat(tmp_path / "flat")
+    assert flat.parameters["label_style"] == "stroke"
+    sheet = ezdxf.readfile(tmp_path / "sheets.sheet01.dxf")
+    sheet_layers = {(la.dxf.name, la.dxf.color, la.dxf.plot) for la in sheet.layers}
+    for c in flat.classes:
+        doc = ezdxf.readfile(tmp_path / f"flat.{c['id']}.dxf")
+        assert {(la.dxf.name, la.dxf.color, la.dxf.plot) for la in doc.layers} == sheet_layers
+        msp = doc.modelspace()
+        assert not msp.query("TEXT") and msp.query("LWPOLYLINE[layer=='ENGRAVE']")
+        summary = check_cam_ready(tmp_path / f"flat.{c['id']}.dxf")
+        assert summary["CUT:LWPOLYLINE"] == 1
+        text = ezdxf.readfile(chain / f"flat.{c['id']}.dxf").modelspace()
+        for layer in ("CUT", "SCORE"):
+            assert [e.get_points("xy") for e in msp.query(f"LWPOLYLINE[layer=='{layer}']")] == \
+                [e.get_points("xy") for e in text.query(f"LWPOLYLINE[layer=='{layer}']")]
+        # every stroke lies inside the part's outline (no leader needed on these parts)
+        from shapely.geometry import LineString, Polygon
+
+        (cut,) = msp.query("LWPOLYLINE[layer=='CUT']")
+        part = Polygon(cut.get_points("xy"))
+        for e in msp.query("LWPOLYLINE[layer=='ENGRAVE']"):
+            assert part.contains(LineString(e.get_points("xy")))
+
+
+def test_template_labels_fit_the_cells_of_the_part():
+    """A class of 12 copies on a part of 20 cells: the class line and 3 lines of 4 ids; on a
+    part of 3 cells, 2 lines of 6 ids; on one cell, one line of everything. The runs of
+    cells cover the part in order, each around one of the longest cells."""
+    from dgpc_cli.nesting.template import cell_runs, template_texts
+
+    cls = {"id": "C01", "quantity": 12, "members": [f"S-v{i:02d}" for i in range(12)]}
+    assert template_texts(cls, 20) == ["C01 x12", "S-v00 S-v01 S-v02 S-v03",
+                                       "S-v04 S-v05 S-v06 S-v07", "S-v08 S-v09 S-v10 S-v11"]
+    assert [len(t.split()) for t in template_texts(cls, 3)] == [2, 6, 6]
+    assert template_texts(cls, 1) == ["C01 x12: " + " ".join(cls["members"])]
+    x = np.array([0.0, 10, 12, 40, 42, 44, 80])                # cells 10, 2, 28, 2, 2, 36 long
+    A = np.column_stack([x, np.zeros_like(x)])
+    B = A + [0.0, 5.0]
+    runs = cell_runs(A, B, 3)
+    assert runs[0][0] == 0 and runs[-1][1] == len(x) - 1
+    assert all(a[1] == b[0] for a, b in zip(runs[:-1], runs[1:], strict=True))
+    assert [any(u in (0, 2, 5) for u in range(a, b)) for a, b in runs] == [True] * 3
 
 
 def test_nest_places_every_copy_labelled_with_its_own_id(chain, tmp_path):
@@ -220,3 +276,48 @@ def test_bad_lengths_are_usage_errors(chain, tmp_path, args):
     res = dgpc("unfold", chain / "chain", *extra, *args, "-o", tmp_path / "f", expect=2)
     assert args[0] in res.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+def test_force_with_fewer_templates_removes_the_old_template_dxfs_only(chain, tmp_path):
+    """A rerun with --force that finds fewer classes removes the template DXFs the previous
+    artifact listed and the new one does not write; files it did not list (a user's
+    ``flat.C09.dxf``, ``flat.notes.dxf``) stay."""
+    dgpc("unfold", chain / "chain", "-o", tmp_path / "flat")
+    before = read_flat(tmp_path / "flat")
+    assert len(before.classes) >= 2
+    old = {tmp_path / f"flat.{c['id']}.dxf" for c in before.classes}
+    assert all(p.is_file() for p in old)
+    mine = [tmp_path / "flat.C09.dxf", tmp_path / "flat.notes.dxf"]
+    for p in mine:
+        p.write_bytes(b"mine")
+    dgpc("unfold", chain / "chain", "--congruence-tol", "5mm", "-o", tmp_path / "flat",
+         "--force")
+    after = read_flat(tmp_path / "flat")
+    assert [c["id"] for c in after.classes] == ["C01"]
+    dxfs = sorted(p.name for p in tmp_path.glob("flat.C*.dxf"))
+    assert dxfs == ["flat.C01.dxf", "flat.C09.dxf"]
+    assert all(p.read_bytes() == b"mine" for p in mine)
+    rows = list(csv.DictReader((tmp_path / "flat.parts.csv").open()))
+    assert [r["dxf"] for r in rows] == ["flat.C01.dxf"]
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_kabsch_recovers_a_rigid_motion_and_refuses_a_mirror_unless_allowed(dim):
+    """The one Kabsch of the package, in the plane (developed parts) and in space: a rotated
+    and moved point set comes back exactly; its mirror image gets the best rotation (an error
+    left), or the reflection itself when reflections are allowed."""
+    from dgpc_cli.strips.congruence import kabsch
+
+    rng = np.random.default_rng(3)
+    X = rng.normal(size=(12, dim))
+    Q, _ = np.linalg.qr(rng.normal(size=(dim, dim)))
+    Q[:, -1] *= np.sign(np.linalg.det(Q))                            # a rotation
+    t = rng.normal(size=dim)
+    R, s = kabsch(X, X @ Q.T + t, allow_reflection=False)
+    assert np.allclose(R, Q, atol=1e-12) and np.allclose(s, t, atol=1e-12)
+    M = np.diag([1.0] * (dim - 1) + [-1.0])
+    Y = X @ M.T
+    R, s = kabsch(X, Y, allow_reflection=False)
+    assert np.linalg.det(R) == pytest.approx(1.0) and np.abs(X @ R.T + s - Y).max() > 0.1
+    R, s = kabsch(X, Y, allow_reflection=True)
+    assert np.allclose(R, M, atol=1e-12) and np.abs(X @ R.T + s - Y).max() < 1e-12

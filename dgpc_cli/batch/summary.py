@@ -22,6 +22,7 @@ from pathlib import Path
 
 from dgpc_cli.io.artifact import created_by, dumps_json, sha256_file
 from dgpc_cli.io.atomic import write_files
+from dgpc_cli.io.jsonable import dotted
 
 from .graph import Task, patch_outputs
 from .project import SHARED, Project
@@ -43,24 +44,16 @@ KEY_METRICS = {
 }
 
 
-def _lookup(doc: dict, dotted: str):
-    for key in dotted.split("."):
-        if not isinstance(doc, dict) or key not in doc:
-            return None
-        doc = doc[key]
-    return doc
-
-
 def artifact_metrics(path: Path, role: str) -> dict:
     """Key metrics of the artifact ``path`` (its role picks them), with its ``state``."""
     try:
         doc = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError, RecursionError):
         return {}
-    out = {name: _lookup(doc.get("metrics", {}), dotted)
-           for name, dotted in KEY_METRICS.get(role, {}).items()}
+    out = {name: dotted(doc.get("metrics", {}), path)
+           for name, path in KEY_METRICS.get(role, {}).items()}
     out = {k: v for k, v in out.items() if v is not None}
-    state = _lookup(doc, "status.state")
+    state = dotted(doc, "status.state")
     if state is not None:
         out["state"] = state
     return out

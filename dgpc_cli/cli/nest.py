@@ -14,6 +14,7 @@ from dgpc_cli.cli.options import (
     check_writable,
     force_opt,
     format_opt,
+    label_style_opt,
     output_opt,
     progressbar,
     units_check_opt,
@@ -84,10 +85,7 @@ def _parsed(parser):
 @click.option("--border", is_flag=True,
               help="Also draw the sheet's border, one closed polyline on layer SHEET_BORDER "
                    "(plotted: a CAM cuts it; by default the cut file has no border).")
-@click.option("--label-style", "label_style", type=click.Choice(["text", "stroke"]),
-              default="text", show_default=True,
-              help="Part ids as TEXT on layer LABEL, or as single-stroke polylines on layer "
-                   "ENGRAVE that an engraver or pen follows.")
+@label_style_opt
 @click.option("--rotations", default="0,180", show_default=True,
               callback=_parsed(parse_rotations), metavar="DEG,DEG,...",
               help="Allowed rotations in degrees (grain or rolling direction).")

@@ -16,6 +16,11 @@ output_opt = click.option(
     "-o", "--output", "output", required=True, type=OutputPath(),
     help="Output artifact stem: writes STEM.json and STEM.obj.")
 force_opt = click.option("--force", is_flag=True, help="Overwrite existing output files.")
+label_style_opt = click.option(
+    "--label-style", "label_style", type=click.Choice(["text", "stroke"]), default="text",
+    show_default=True,
+    help="Part ids as TEXT on layer LABEL, or as single-stroke polylines on layer ENGRAVE that "
+         "an engraver or pen follows.")
 format_opt = click.option(
     "--format", "fmt", type=click.Choice(["obj", "3dm"]), default="obj", show_default=True,
     help="Geometry format: with 3dm, also write STEM.3dm (Rhino, in the artifact's unit, "

@@ -8,7 +8,13 @@ from pathlib import Path
 import click
 
 from dgpc_cli.cli.length import LengthParam, length_help
-from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
+from dgpc_cli.cli.options import (
+    check_writable,
+    force_opt,
+    format_opt,
+    label_style_opt,
+    output_opt,
+)
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.flat import FlatArtifact, csv_path, flat_files
@@ -45,10 +51,12 @@ log = logging.getLogger(__name__)
               help=length_help("With --stock-length: no joint of a strip within this (>= 0, "
                                "along the geodesic) of a joint of the strips beside it "
                                f"[default: {STAGGER_FRACTION:g} × the stock length]."))
+@label_style_opt
 @output_opt
 @force_opt
 @format_opt
-def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, output, force, fmt):
+def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, output, force,
+           fmt):
     """Develop the planar-quad strips of the strips artifact STEM into the plane (paper §6.2.4).
 
     Records per part the closed outline, the rulings (score lines), a label point, the edge
@@ -60,7 +68,8 @@ def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, output, force
     congruence classes are then per board. Writes the flat artifact -o STEM2, its cut list
     STEM2.parts.csv (one line per template: quantity and the copies' ids, mm), STEM2.assembly.csv
     (one line per part: where it goes) and per template STEM2.C01.dxf, ... (the part alone,
-    mm, layers as on the cut sheets).
+    mm, layers as on nest's cut sheets, labelled with the class, its quantity and its copies'
+    ids in --label-style).
     """
     if stagger is not None and stock_length is None:
         raise click.UsageError("--stagger goes with --stock-length")
@@ -80,12 +89,13 @@ def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, output, force
         trims=[r.get("trim") for r in strips.records])
     for line in scale_warnings(parts, geometry, units, stock_length):
         log.warning("%s: %s", json_path, line)
-    templates = template_dxfs(parts, classes)
+    templates = template_dxfs(parts, classes, label_style)
     parts, classes, joints = records_in_units(parts, classes, joints, units)
     out_json, _ = artifact_paths(output)
     art = FlatArtifact(
         parts=parts, classes=classes, units=units, joints=joints, templates=templates,
         parameters={"mirror_ok": mirror_ok, "congruence_tol": congruence_tol.text(),
+                    "label_style": label_style,
                     "congruence_tol_mm": congruence_tol.to_mm(units),
                     "stock_length": None if stock_mm is None else stock_mm / mm_per_unit(units),
                     "stagger": None if stagger_mm is None else stagger_mm / mm_per_unit(units)},

@@ -47,6 +47,7 @@ from ezdxf import units
 from ezdxf.enums import TextEntityAlignment
 
 from ..errors import DgpcError
+from .units import nice_length
 
 
 @dataclass(frozen=True)
@@ -374,7 +375,7 @@ def _preview_frame(ax, lo, hi, frame: tuple[float, float] | None, fontsize: floa
     ax.set_ylim(lo[1], hi[1])
     ax.set_aspect("equal", adjustable="box", anchor="N")
     ax.set_axis_off()
-    length = _round_length(0.2 * float(hi[0] - lo[0]))
+    length = nice_length(0.2 * float(hi[0] - lo[0]))
     x0 = lo[0] + 0.01 * float(hi[0] - lo[0])
     fig = ax.get_figure()
     ax.plot([x0, x0 + length], [0.0, 0.0], color="k", lw=2.5, solid_capstyle="butt",
@@ -383,11 +384,3 @@ def _preview_frame(ax, lo, hi, frame: tuple[float, float] | None, fontsize: floa
     ax.text(x0 + 0.5 * length, 0.0, f"{length:g} mm", ha="center", va="top", fontsize=fontsize,
             clip_on=False,
             transform=offset_copy(ax.get_xaxis_transform(), fig, y=-12, units="points"))
-
-
-def _round_length(span: float) -> float:
-    """The largest 1, 2 or 5 × 10^k not above ``span``."""
-    if not span > 0 or not np.isfinite(span):
-        return 1.0
-    k = np.floor(np.log10(span))
-    return float(max(step * 10.0**k for step in (1.0, 2.0, 5.0) if step * 10.0**k <= span))

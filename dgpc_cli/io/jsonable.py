@@ -45,6 +45,16 @@ def to_jsonable(obj: Any) -> Any:
 MAX_DEPTH = 64
 
 
+def dotted(doc: Any, path: str) -> Any:
+    """The value at the dotted ``path`` (``"status.state"``) of nested dicts ``doc``, or None
+    where a key is missing or a step is not a dict."""
+    for key in path.split("."):
+        if not isinstance(doc, dict) or key not in doc:
+            return None
+        doc = doc[key]
+    return doc
+
+
 def nesting_depth(doc: Any) -> int:
     """How deeply arrays and objects nest in ``doc`` (0 for a number), without recursion."""
     deepest, stack = 0, [(doc, 1)]

@@ -199,8 +199,9 @@ def largest_piece(vertices: np.ndarray, faces: np.ndarray):
     n_pieces = int(labels.max()) + 1
     if n_pieces == 1:
         return vertices, faces, 1
-    tri = vertices[faces]
-    area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+    from trimesh.triangles import area as triangle_areas
+
+    area = triangle_areas(vertices[faces])
     keep = labels == int(np.argmax(np.bincount(labels, weights=area)))
     used, inverse = np.unique(faces[keep], return_inverse=True)
     return (np.ascontiguousarray(vertices[used]),

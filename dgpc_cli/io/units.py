@@ -107,3 +107,12 @@ def same_units(records: list[tuple[str, str]], source: str | None = None) -> str
                             "different units (re-run one of them with init --units)",
                             source=source or name)
     return units
+
+
+def nice_length(span: float) -> float:
+    """The largest 1, 2 or 5 × 10^k not above ``span`` (the length of a scale bar; 1 for a
+    span that is not a positive finite number)."""
+    if not span > 0 or not np.isfinite(span):
+        return 1.0
+    k = np.floor(np.log10(span))
+    return float(max(step * 10.0**k for step in (1.0, 2.0, 5.0) if step * 10.0**k <= span))

@@ -48,7 +48,9 @@ def subdivision_samples(vertices, faces, target: int = DEFAULT_SAMPLES):
     bary = np.column_stack([1 - bary.sum(1), bary])
     tri = V[F]
     pts = np.einsum("sk,fkd->fsd", bary, tri).reshape(-1, 3)
-    area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+    from trimesh.triangles import area as triangle_areas
+
+    area = triangle_areas(tri)
     return pts, np.repeat(area / k**2, len(bary))
 
 

@@ -11,10 +11,10 @@ import numpy as np
 
 from dgpc_cli.metrics.frames import as_grid, corner_angles
 
-__all__ = ["principal_strains", "strain", "strain_tensor"]
+__all__ = ["mean_available", "principal_strains", "strain", "strain_tensor"]
 
 
-def _mean_available(*arrays: np.ndarray) -> np.ndarray:
+def mean_available(*arrays: np.ndarray) -> np.ndarray:
     """Mean over the finite entries of equally shaped arrays, NaN where none is finite."""
     stack = np.stack(arrays)
     ok = np.isfinite(stack)
@@ -64,11 +64,11 @@ def strain_tensor(f, f0) -> np.ndarray:
     e2[:, :-1], e4[:, 1:] = ev, ev
 
     a, a0 = corner_angles(f), corner_angles(f0)
-    gamma = _mean_available(a0.a12 - a.a12, -(a0.a1b2 - a.a1b2),
+    gamma = mean_available(a0.a12 - a.a12, -(a0.a1b2 - a.a1b2),
                             a0.a1b2b - a.a1b2b, -(a0.a12b - a.a12b))
     D = np.empty((m, n, 2, 2))
-    D[..., 0, 0] = _mean_available(e1, e3)
-    D[..., 1, 1] = _mean_available(e2, e4)
+    D[..., 0, 0] = mean_available(e1, e3)
+    D[..., 1, 1] = mean_available(e2, e4)
     D[..., 0, 1] = D[..., 1, 0] = 0.5 * np.tan(gamma)
     return D
 

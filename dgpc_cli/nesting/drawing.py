@@ -47,6 +47,13 @@ def sheet_drawing(width: float, height: float, placed: list[dict], *, border: bo
         for line in p["score"]:
             d.polyline("SCORE", line)
     labels = place_labels(placed, width, height)
+    draw_labels(d, labels, label_style)
+    return d, labels
+
+
+def draw_labels(d: Drawing, labels: list, label_style: str) -> None:
+    """Draw placed labels (:class:`~dgpc_cli.nesting.labels.Label`) and their leaders on the
+    layer of ``label_style``: TEXT on ``LABEL``, or single strokes on ``ENGRAVE``."""
     layer = LABEL_LAYER[label_style]
     for lb in labels:
         if label_style == "stroke":
@@ -55,7 +62,6 @@ def sheet_drawing(width: float, height: float, placed: list[dict], *, border: bo
             d.text(layer, lb.text, lb.at, lb.height, lb.rotation)
         if lb.leader is not None:
             d.polyline(layer, lb.leader)
-    return d, labels
 
 
 def mold_map_drawing(r_mm: np.ndarray, h_mm: np.ndarray, sector_deg: float,

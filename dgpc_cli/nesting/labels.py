@@ -66,8 +66,9 @@ def upright(deg: float) -> float:
 
 
 def short_id(part_id: str) -> str:
-    """The id without its ``S-v`` prefix (``S-v07.2`` → ``07.2``)."""
-    return part_id[3:] if part_id.startswith("S-v") else part_id
+    """The id without its ``S-v`` prefix (``S-v07.2`` → ``07.2``); in a text of several ids
+    separated by spaces, each id's."""
+    return " ".join(w[3:] if w.startswith("S-v") else w for w in part_id.split(" "))
 
 
 def cells(A: np.ndarray, B: np.ndarray) -> list[np.ndarray]:

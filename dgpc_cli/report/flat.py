@@ -20,9 +20,9 @@ import math
 
 import numpy as np
 
-from ..io.units import mm_per_unit
+from ..io.units import mm_per_unit, nice_length
 from .render import figure
-from .views import nice_length
+from .views import scale_bar_at
 from .words import counted
 
 __all__ = ["PAGE", "error_text", "layout_figure", "overlay_figure", "principal_rotation"]
@@ -139,11 +139,7 @@ def overlay_figure(parts: list[dict], classes: list[dict], units: str):
     bar_ax.set_xlim(0.0, 2 * half_w)
     bar_ax.set_ylim(0.0, 1.0)
     bar_ax.set_axis_off()
-    bar = nice_length(0.25 * span)
-    bar_ax.plot([0.05 * half_w, 0.05 * half_w + bar], [0.75, 0.75], color="k", lw=2.5,
-                solid_capstyle="butt", clip_on=False, gid="scale-bar")
-    bar_ax.text(0.05 * half_w + 0.5 * bar, 0.5, f"{bar:g} {units}", ha="center", va="top",
-                fontsize=LABEL_PT)
+    scale_bar_at(bar_ax, 0.05 * half_w, 0.75, nice_length(0.25 * span), units, LABEL_PT)
     fig.suptitle(f"{counted(len(parts), 'part')} in "
                  f"{counted(len(classes), 'congruence class', 'congruence classes')}, each "
                  "overlaid on "
@@ -227,11 +223,7 @@ def layout_figure(parts: list[dict], units: str):
     ax.set_ylim(-gap, h + gap)                           # first row on top, y up
     ax.set_aspect("equal", adjustable="box")
     ax.set_axis_off()
-    bar = nice_length(w / 4)
-    ax.plot([0, bar], [-0.6 * gap] * 2, color="k", lw=2.5, solid_capstyle="butt",
-            clip_on=False, gid="scale-bar")
-    ax.text(0.5 * bar, -0.75 * gap, f"{bar:g} {units}", ha="center", va="top",
-            fontsize=LABEL_PT)
+    scale_bar_at(ax, 0.0, -0.6 * gap, nice_length(w / 4), units, LABEL_PT)
     fig.suptitle(f"{len(parts)} developed parts laid out like a sheet (in id order), "
                  f"with rulings, id and class", fontsize=TITLE_PT - 1, y=0.995)
     _cut_score_legend(fig, fig_h, "outline (cut)", "ruling (score)")

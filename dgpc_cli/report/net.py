@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dgpc_cli.metrics.curvature import gaussian_curvature, strip_widths
+from dgpc_cli.metrics.strain import mean_available
 
 from .scene import Polygons, Segments, grid_quads
 from .views import ColourBar, views_figure
@@ -71,18 +72,10 @@ class Reference:
 
     @property
     def area_fraction(self) -> float:
-        tri = self.vertices[self.faces]
-        area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]),
-                                    axis=1)
+        from trimesh.triangles import area as triangle_areas
+
+        area = triangle_areas(self.vertices[self.faces])
         return float((area * self.covered).sum() / area.sum()) if area.sum() > 0 else 0.0
-
-
-def _nanmean(*arrays: np.ndarray) -> np.ndarray:
-    stack = np.stack(arrays)
-    ok = np.isfinite(stack)
-    count = ok.sum(axis=0)
-    total = np.where(ok, stack, 0.0).sum(axis=0)
-    return np.where(count > 0, total / np.maximum(count, 1), np.nan)
 
 
 def width_per_quad(f: np.ndarray) -> np.ndarray:
@@ -94,13 +87,13 @@ def width_per_quad(f: np.ndarray) -> np.ndarray:
 def curvature_per_quad(f: np.ndarray) -> np.ndarray:
     """Discrete Gaussian curvature per quad ``(m − 1, n − 1)`` (NaN where none is defined)."""
     K = gaussian_curvature(f)
-    return _nanmean(K[:-1], K[1:])
+    return mean_available(K[:-1], K[1:])
 
 
 def vertex_to_quad(values: np.ndarray) -> np.ndarray:
     """Per-vertex values ``(m, n)`` averaged to the quads ``(m − 1, n − 1)``, NaN-aware."""
     v = np.asarray(values, float)
-    return _nanmean(v[:-1, :-1], v[1:, :-1], v[1:, 1:], v[:-1, 1:])
+    return mean_available(v[:-1, :-1], v[1:, :-1], v[1:, 1:], v[:-1, 1:])
 
 
 def _norm(values: np.ndarray, diverging: bool):

@@ -16,10 +16,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..io.units import nice_length
 from .flat import CUT, PAGE, SCORE, principal_rotation
 from .render import figure
 from .scene import Polygons, Segments
-from .views import ColourBar, nice_length, views_figure
+from .views import ColourBar, scale_bar_at, views_figure
 
 __all__ = ["SEAM_OK", "SEAM_STEPPED", "TEMPLATE_SIZE", "deviation_figure",
            "template_overlay_figure"]
@@ -41,12 +42,8 @@ def _ring(A: np.ndarray, B: np.ndarray) -> np.ndarray:
 def _scale_bar(ax, span: float, y: float) -> None:
     """A round length (mm) about a quarter of ``span``, at height ``y`` (data) under the
     drawing's left end."""
-    x0 = ax.get_xlim()[0] + 0.03 * span
-    bar = nice_length(0.25 * span)
-    ax.plot([x0, x0 + bar], [y, y], color="k", lw=2.5, solid_capstyle="butt", clip_on=False,
-            gid="scale-bar")
-    ax.annotate(f"{bar:g} mm", (x0 + 0.5 * bar, y), xytext=(0, -4), textcoords="offset points",
-                ha="center", va="top", fontsize=SMALL_PT, annotation_clip=False)
+    scale_bar_at(ax, ax.get_xlim()[0] + 0.03 * span, y, nice_length(0.25 * span), "mm",
+                 SMALL_PT)
 
 
 def template_overlay_figure(parts: list[tuple[str, np.ndarray, np.ndarray]], *,

@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import math
 
+from ..io.jsonable import dotted
+
 __all__ = ["GROUPS", "flatten", "format_value", "group_of", "item_tables", "metric_unit",
            "scalar_rows", "status_rows"]
 
@@ -57,6 +59,11 @@ AREAS = {"total_area", "covered_area", "reference_area", "area"}
 #: ``relative`` in them are lengths.
 FABRICATION_UNITS = {"ruling_angle": "°", "max_ruling_angle": "°", "area": "m²",
                      "reference_area": "m²"}
+#: Metrics of a strips artifact that are relative (planarize-strips): the deviation from the
+#: net strip over the strip's width, the planarity defect over the quad's mean diagonal (their
+#: lengths in mm are the ``fabrication`` metrics').
+RELATIVE = {"deviation": "× width", "max_deviation": "× width",
+            "planarity": "× diagonal", "max_planarity": "× diagonal"}
 #: Heads whose min / max / mean are lengths.
 LENGTH_STATS = {"edges", "hausdorff", "parallel_departure", "handle_miss"}
 
@@ -83,6 +90,8 @@ def metric_unit(key: str, units: str) -> str:
         return "" if plain else "mm"
     if last in AREAS:
         return f"{units}²"
+    if last in RELATIVE and head in ("per_strip", *RELATIVE):
+        return RELATIVE[last]
     if head == "gaussian_curvature":
         return f"1/{units}²"
     if last in ("relative", "relative_mad", "max_relative_mad", "max_mad_over_radius",
@@ -95,6 +104,8 @@ def metric_unit(key: str, units: str) -> str:
         return "rad"
     if last.endswith("_deg"):
         return "°"
+    if last.endswith("_mm"):
+        return "mm"
     if last in ("pleat_max", "crease_max"):
         return "mean edges"
     return ""
@@ -162,21 +173,12 @@ def scalar_rows(metrics: dict, units: str) -> dict[str, list[tuple[str, str, str
     return out
 
 
-def _lookup(metrics: dict, key: str):
-    node = metrics
-    for part in key.split("."):
-        if not isinstance(node, dict) or part not in node:
-            return None
-        node = node[part]
-    return node
-
-
 def item_tables(metrics: dict, units: str) -> list[tuple[str, list[str], list[list[str]]]]:
     """The per-item records as tables ``(title, header, rows)``: one row per item, a column per
     field (header ``field [unit]``)."""
     tables = []
     for key, title in ITEMS.items():
-        node = _lookup(metrics, key)
+        node = dotted(metrics, key)
         if isinstance(node, dict) and node and all(isinstance(v, dict) for v in node.values()):
             fields = sorted({f for v in node.values() for f in v})
             rows = [[item] + [_cell(v.get(f)) for f in fields] for item, v in sorted(node.items())]

@@ -11,16 +11,16 @@ the frame's width.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
+from ..io.units import nice_length
 from .camera import model_frame, standard_views
 from .render import figure
 from .scene import draw, scene_points
 
-__all__ = ["VIEWS_SIZE", "ColourBar", "nice_length", "one_scale", "view_axes", "views_figure"]
+__all__ = ["VIEWS_SIZE", "ColourBar", "one_scale", "view_axes", "views_figure"]
 
 #: Size of the figure (inches).
 VIEWS_SIZE = (10.0, 6.4)
@@ -42,19 +42,19 @@ class ColourBar:
     label: str
 
 
-def nice_length(span: float) -> float:
-    """The largest 1, 2 or 5 × 10^k not above ``span`` (``span`` > 0)."""
-    if not span > 0 or not math.isfinite(span):
-        return 1.0
-    k = math.floor(math.log10(span))
-    for step in (5.0, 2.0, 1.0):
-        if step * 10.0**k <= span:
-            return step * 10.0**k
-    return 10.0**k
-
-
 def _length_text(length: float, unit: str) -> str:
     return f"{length:g} {unit}"
+
+
+def scale_bar_at(ax, x0: float, y: float, length: float, unit: str,
+                 fontsize: float = LABEL_PT) -> None:
+    """A scale bar of ``length`` (in ``unit``) from ``(x0, y)`` in the data coordinates of a
+    2-D drawing (gid ``scale-bar``), its length written a few points under its middle."""
+    ax.plot([x0, x0 + length], [y, y], color="k", lw=2.5, solid_capstyle="butt",
+            clip_on=False, gid="scale-bar")
+    ax.annotate(_length_text(length, unit), (x0 + 0.5 * length, y), xytext=(0, -4),
+                textcoords="offset points", ha="center", va="top", fontsize=fontsize,
+                annotation_clip=False)
 
 
 def scale_bar(ax, frame, unit: str) -> None:

@@ -298,6 +298,7 @@ SEAM_STEP_MARK = 0.01
 def _fabrication_figures(art, json_path: Path) -> list:
     """Paper Fig. 18 for a strips artifact whose net is there: the developments overlaid on
     the template, the deviation from the net and the seams (none without the net)."""
+    from dgpc_cli.report.flat import error_text
     from dgpc_cli.report.strips import deviation_figure, template_overlay_figure
     from dgpc_cli.stages.inspect import recorded_axis
     from dgpc_cli.stages.strip_fabrication import figure_data, recorded_net
@@ -319,7 +320,7 @@ def _fabrication_figures(art, json_path: Path) -> list:
          lambda: template_overlay_figure(
              data.developed, title=f"{counted(count, 'developed strip')} overlaid on the "
                                    f"template {data.developed[0][0]}: outlines up to "
-                                   f"{data.template_error:.3g} mm apart")),
+                                   f"{error_text(data.template_error, 'mm')} apart")),
         ("deviation", "The strips in 3-D, each quad coloured by its largest distance from the "
                       "net strip (mm); the seams (the geodesics neighbouring strips share) in "
                       f"red where the two strips' copies step more than {mark:.3g} mm apart "

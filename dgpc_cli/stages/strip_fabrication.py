@@ -63,9 +63,9 @@ def fabrication_metrics(f: np.ndarray, units: str, records: list[dict], geometry
             part_gaps[r["id"]] = [part_end_gaps(A, B, ring, reference) for ring in rings]
             part_areas[r["id"]] = [abs(signed_area(strip_points(dev.A, dev.B, ring)))
                                    for ring in rings]
-        tri = reference.vertices[reference.faces]
-        outline_area = float(0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0],
-                                                           tri[:, 2] - tri[:, 0]), axis=-1).sum())
+        from trimesh.triangles import area as triangle_areas
+
+        outline_area = float(triangle_areas(reference.vertices[reference.faces]).sum())
     return summary(ids, measures, mm_per_unit=mm_per_unit(units), part_gaps=part_gaps,
                    part_areas=part_areas, outline_area=outline_area)
 

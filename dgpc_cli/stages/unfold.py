@@ -165,11 +165,13 @@ def scale_warnings(parts: list[dict], geometry: list, units: str, stock_length) 
     return out
 
 
-def template_dxfs(parts: list[dict], classes: list[dict]) -> dict[str, bytes]:
+def template_dxfs(parts: list[dict], classes: list[dict], label_style: str = "text"
+                  ) -> dict[str, bytes]:
     """Class id -> the DXF bytes of its template (:mod:`dgpc_cli.nesting.template`): the
-    representative of every class, from the records of :func:`unfold_strips` (mm)."""
+    representative of every class, from the records of :func:`unfold_strips` (mm), labelled
+    with the class, its quantity and its copies' ids in ``label_style``."""
     by_id = {p["id"]: p for p in parts}
-    return {c["id"]: template_drawing(by_id[c["representative"]], c["id"]).to_bytes(
+    return {c["id"]: template_drawing(by_id[c["representative"]], c, label_style).to_bytes(
         f"template {c['id']}") for c in classes}
 
 
@@ -198,6 +200,16 @@ def records_in_units(parts: list[dict], classes: list[dict], joints: list[dict],
             [{**j, "position": j["position"] / k} for j in joints])
 
 
+def cuttable_part(A: np.ndarray, B: np.ndarray, ring: np.ndarray, name: str, source) -> dict:
+    """The part of the developed strip ``A, B`` inside ``ring`` (the strip's ``(t, s)``,
+    :func:`~dgpc_cli.strips.trim.developed_part`); DgpcError naming ``name`` and ``source``
+    when its outline crosses itself (no cutter can cut it)."""
+    part = developed_part(A, B, ring)
+    if not Polygon(part["outline"]).is_valid:
+        raise DgpcError(f"the developed outline of {name} crosses itself", source=source)
+    return part
+
+
 def _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_ok, source):
     """:func:`unfold_strips` for strips clipped to the reference's outline (mm)."""
     whole = [i for i, t in enumerate(trims) if t is None]
@@ -208,8 +220,7 @@ def _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_
             source=source)
     else:
         parts, classes = [], []
-    identity = Alignment(R=np.eye(2), t=np.zeros(2), relabel="identity", mirrored=False,
-                         error=0.0)
+    identity = Alignment.identity()
     for i, trim in enumerate(trims):
         if trim is None:
             continue
@@ -218,10 +229,7 @@ def _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_
         along = 0.5 * (cumulative(A) + cumulative(B))
         for piece in trim["parts"]:
             ring = np.asarray(piece["outline"], float)
-            part = developed_part(d.A, d.B, ring)
-            if not Polygon(part["outline"]).is_valid:
-                raise DgpcError(f"the developed outline of {piece['id']} crosses itself",
-                                source=source)
+            part = cuttable_part(d.A, d.B, ring, piece["id"], source)
             t0, t1 = float(ring[:, 0].min()), float(ring[:, 0].max())
             cls = f"C{len(classes) + 1:02d}"
             ga, gb = part["geodesics"]
@@ -307,10 +315,7 @@ def trimmed_boards(geometry, devs, ids, columns, trims, congruence_tol, mirror_o
             whole.append((len(parts), sub))
         else:
             shifted = board - [r0, 0.0]
-            part = developed_part(sub.A, sub.B, shifted)
-            if not Polygon(part["outline"]).is_valid:
-                raise DgpcError(f"the developed outline of {pid}.{k} crosses itself",
-                                source=source)
+            part = cuttable_part(sub.A, sub.B, shifted, f"{pid}.{k}", source)
             ga, gb = part["geodesics"]
             record.update(part, width=list(part_widths(ga, gb)), trimmed=True)
             cut.append(len(parts))
@@ -326,8 +331,7 @@ def trimmed_boards(geometry, devs, ids, columns, trims, congruence_tol, mirror_o
         class_records.append(class_record(cls.id, rep["id"],
                                           [parts[whole[n][0]]["id"] for n in cls.members],
                                           [al.error for al in cls.alignments], rep["length"]))
-    identity = Alignment(R=np.eye(2), t=np.zeros(2), relabel="identity", mirrored=False,
-                         error=0.0)
+    identity = Alignment.identity()
     for j in cut:
         cid = f"C{len(class_records) + 1:02d}"
         parts[j].update({"class": cid, "alignment": identity.record(parts[j]["length"])})

@@ -53,6 +53,11 @@ class Alignment:
     mirrored: bool
     error: float
 
+    @classmethod
+    def identity(cls) -> Alignment:
+        """A part's alignment onto itself (a class's representative, a part of its own)."""
+        return cls(R=np.eye(2), t=np.zeros(2), relabel="identity", mirrored=False, error=0.0)
+
     def apply(self, X: np.ndarray) -> np.ndarray:
         return X @ self.R.T + self.t
 
@@ -66,14 +71,14 @@ class Alignment:
 
 def kabsch(X: np.ndarray, Y: np.ndarray, allow_reflection: bool) -> tuple[np.ndarray, np.ndarray]:
     """Rotation (or orthogonal map) R and translation t minimizing ``Σ‖R x_i + t − y_i‖²``
-    for corresponding points ``X, Y (k, 2)``."""
+    for corresponding points ``X, Y (k, d)`` (d = 2 for developed parts, 3 in space)."""
     cx, cy = X.mean(axis=0), Y.mean(axis=0)
     H = (X - cx).T @ (Y - cy)
     U, _, Vt = np.linalg.svd(H)
     d = np.sign(np.linalg.det(Vt.T @ U.T))
     if allow_reflection:
         d = 1.0
-    D = np.diag([1.0, d if d != 0 else 1.0])
+    D = np.diag([1.0] * (X.shape[1] - 1) + [d if d != 0 else 1.0])
     R = Vt.T @ D @ U.T
     return R, cy - R @ cx
 
@@ -176,8 +181,7 @@ def congruence_classes(parts: list[tuple[np.ndarray, np.ndarray]], tol: float, k
     for k, group in enumerate(complete_linkage(D, tol)):
         farthest = D[np.ix_(group, group)].max(axis=1)
         rep = group[int(np.argmax(farthest <= farthest.min() + TIE * tol))]
-        alignments = [Alignment(R=np.eye(2), t=np.zeros(2), relabel="identity",
-                                mirrored=False, error=0.0) if i == rep
+        alignments = [Alignment.identity() if i == rep
                       else align(*canon[i], *canon[rep], mirror_ok=mirror_ok) for i in group]
         out.append(CongruenceClass(id=f"C{k + 1:02d}", representative=order[rep],
                                    members=[order[i] for i in group], alignments=alignments))

@@ -155,10 +155,10 @@ def strip_area(A: np.ndarray, B: np.ndarray) -> float:
 def net_strip_area(P: np.ndarray, Q: np.ndarray) -> float:
     """Area of the net strip ``P, Q (m, 3)`` over all its rows: its quads as bilinear patches,
     finely triangulated (:func:`~dgpc_cli.strips.quality.patch_mesh`)."""
+    from trimesh.triangles import area as triangle_areas
+
     V, F = patch_mesh(np.asarray(P, float), np.asarray(Q, float))
-    tri = V[F]
-    return float(0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]),
-                                      axis=-1).sum())
+    return float(triangle_areas(V[F]).sum())
 
 
 def part_end_gaps(A: np.ndarray, B: np.ndarray, ring: np.ndarray, reference) -> np.ndarray:
