@@ -102,16 +102,19 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
     reason = "--per-strip" if per_strip else template_qualifies(net.f_mm, columns)
     with progressbar(ctx, len(columns), "planarize strips") as bar:
         strips = planarize_strips(net.f_mm, columns, flat_angle=flat_angle, progress=bar.update)
-    template = None
+    template = fallback = None
     if reason is None:
         log.info("planarize-strips: one template for all strips (the net is isometric to a "
                  "surface of revolution with equal strip widths)")
-        fitted, template = template_strips(net.f_mm, strips, net.units,
-                                           seam_weight=seam_weight,
-                                           ruling_fairness=ruling_fairness)
+        fitted, record = template_strips(net.f_mm, strips, net.units,
+                                         seam_weight=seam_weight,
+                                         ruling_fairness=ruling_fairness)
         if fitted is None:
-            log.warning("planarize-strips: every strip on its own, no shared template: every "
-                        "template fit crossed its rulings (folded quads)")
+            log.warning("planarize-strips: every strip on its own, no shared template: %s",
+                        record["rejected"])
+            fallback = record
+        else:
+            template = record
         strips = fitted or strips
     elif not per_strip:
         log.warning("planarize-strips: every strip on its own, no shared template: the net %s",
@@ -134,7 +137,8 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
         parameters={"strips": [columns[0], columns[-1]], "flat_angle": flat_angle,
                     "polish_above": POLISH_ABOVE, "trim": trim,
                     "method": "per-strip" if template is None else "template",
-                    "seam_weight": seam_weight, "ruling_fairness": ruling_fairness},
+                    "seam_weight": seam_weight, "ruling_fairness": ruling_fairness,
+                    **({"template_rejected": fallback} if fallback else {})},
         template=template,
         inputs={"net": file_input(json_path, out_json.resolve().parent)},
         metrics={**strips_metrics(strips),

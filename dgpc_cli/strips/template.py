@@ -53,13 +53,15 @@ log = logging.getLogger(__name__)
 
 #: The variants of the fit (see the module).
 VARIANTS = ("shared-vertices",)
-#: Weight schedule of the closeness of the strips to the net (the hard terms have weight 1).
-CLOSENESS_WEIGHT = Schedule.constant(1e-3)
-#: Weight of the boundary vertices' distance across their net geodesic.
-ACROSS_WEIGHT = Schedule.constant(1e-3)
-#: Weights of the fairness of the ruling vectors and of the slides along the geodesics.
+#: Weights of the soft terms and regularizers in the first round (the hard terms have weight
+#: 1): closeness of the strips to the net, the boundary vertices' distance across their net
+#: geodesic, their slide along it within a round (a proximal term: sliding is free for the
+#: closeness), the fairness of the slides.
+WEIGHTS = {"closeness": 1e-3, "across": 1e-3, "slide": 1e-5, "slide_fairness": 1e-8}
+#: Weight of the fairness of the ruling vectors.
 RULING_FAIRNESS = 1e-7
-SLIDE_FAIRNESS = Schedule.constant(1e-8)
+#: Factors of the soft weights, one per round.
+ROUND_FACTORS = (1.0, 0.1, 0.01, 1e-3, 1e-4, 1e-5)
 #: The template's boundary steps and quad turns stay above this fraction of their mean (no
 #: folded quad, no crossing rulings).
 ORDER_MARGIN = 0.2
@@ -67,7 +69,7 @@ ORDER_MARGIN = 0.2
 SEAM_WEIGHT = 0.0
 #: Tolerance (hard residual at mean edge length 1) and iteration limit of the fit.
 FIT_TOL = 1e-10
-FIT_ROUNDS = 4
+FIT_ROUNDS = 6
 ROUND_MAX_ITER = 40
 PROJECTION_MAX_ITER = 30
 
@@ -225,10 +227,12 @@ def _order_bounds(T: np.ndarray):
     return e, sign, step, ORDER_MARGIN * float(np.mean(np.abs(cross)))
 
 
-def _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight, ruling_weight):
+def _soft_terms(x, setup: TemplateProblem, factor: float):
     """The soft terms and regularizers, their frames (closest points on the geodesics, tangent
-    planes of the net at the samples' feet) taken at ``x``: held fixed for one round."""
-    m, S = layout.m, layout.S
+    planes of the net at the samples' feet) taken at ``x``: held fixed for one round. The soft
+    weights are scaled by ``factor`` (the rounds lower it: a penalty method whose last round
+    is close to the hard constraints)."""
+    layout, P, Q, m, S = setup.layout, setup.P, setup.Q, setup.layout.m, setup.layout.S
     A, B = layout.strips(x)
     cA, tA, bA = _frames(P, Q, A, False)
     cB, tB, bB = _frames(P, Q, B, True)
@@ -238,21 +242,119 @@ def _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight, rul
 
     c, t, across = grid(cA, cB), grid(tA, tB), grid(bA, bB)
     p = x[: 3 * layout.n_vertices].reshape(-1, 3)
-    feet, planes = reference.closest(np.einsum("kc,kcj->kj", samples[1], p[samples[0]]))
+    samples = setup.samples
+    feet, planes = setup.reference.closest(np.einsum("kc,kcj->kj", samples[1], p[samples[0]]))
+    w = setup.weights
+
+    def const(v):
+        return Schedule.constant(v * factor)
+
     terms = [
         Term("closeness", lambda x: plane_offsets(x, layout, samples, feet, planes),
-             CLOSENESS_WEIGHT, False),
+             const(w["closeness"]), False),
         Term("across", lambda x: lateral(x, layout, c.reshape(-1, 3), across.reshape(-1, 3)),
-             ACROSS_WEIGHT, False),
+             const(w["across"]), False),
+        Term("slide", lambda x: lateral(x, layout, c.reshape(-1, 3), t.reshape(-1, 3)),
+             const(w["slide"]), False, True),
         Term("ruling_fairness", lambda x: ruling_fairness(x, layout),
-             Schedule.constant(ruling_weight), False, True),
-
-        Term("slide_fairness", lambda x: slide_fairness(x, layout, c, t), SLIDE_FAIRNESS,
-             False, True)]
-    if seam_dirs is not None:
-        terms.append(Term("seam", lambda x: seam(x, layout, seam_dirs),
-                          Schedule.constant(seam_weight), False))
+             const(w["ruling_fairness"]), False, True),
+        Term("slide_fairness", lambda x: slide_fairness(x, layout, c, t),
+             const(w["slide_fairness"]), False, True)]
+    if setup.seam_dirs is not None:
+        terms.append(Term("seam", lambda x: seam(x, layout, setup.seam_dirs),
+                          const(w["seam"]), False))
     return terms
+
+
+@dataclass
+class TemplateProblem:
+    """What every start of a template fit shares (see :func:`fit_template`): the net strips
+    ``P, Q (S, m, 3)`` scaled to mean edge length 1 about ``center`` (``scale``), the layout,
+    the net as a reference surface and the sample points of the closeness, the end v-edges,
+    the seam directions and the weights; the solver's workspace (one pattern for every start
+    and round: one symbolic factorization)."""
+
+    layout: StripSetLayout
+    P: np.ndarray
+    Q: np.ndarray
+    center: np.ndarray
+    scale: float
+    reference: ReferenceSurface
+    samples: tuple
+    end_c: np.ndarray
+    end_t: np.ndarray
+    seam_dirs: np.ndarray | None
+    weights: dict
+    workspace: object = None
+
+    @classmethod
+    def build(cls, f: np.ndarray, columns, *, seam_weight: float = SEAM_WEIGHT,
+              ruling_fairness: float = RULING_FAIRNESS, **weights) -> TemplateProblem:
+        f = np.asarray(f, dtype=float)
+        columns = np.asarray(columns, dtype=int)
+        P, Q = np.moveaxis(f[:, columns], 1, 0), np.moveaxis(f[:, columns + 1], 1, 0)
+        S, m = P.shape[:2]
+        center = f.reshape(-1, 3).mean(axis=0)
+        edges = np.concatenate([np.linalg.norm(np.diff(P, axis=1), axis=-1).ravel(),
+                                np.linalg.norm(Q - P, axis=-1).ravel()])
+        scale = 1.0 / float(np.mean(edges))
+        P, Q = (P - center) * scale, (Q - center) * scale
+        layout = StripSetLayout(m, S)
+        # the end rulings: the net's end v-edges (no slide along the geodesic there)
+        end_c = np.stack([np.stack([P[:, r], Q[:, r]], axis=1).reshape(2 * S, 3)
+                          for r in (0, -1)])
+        tP, tQ = unit(np.gradient(P, axis=1)), unit(np.gradient(Q, axis=1))
+        end_t = np.stack([np.stack([tP[:, r], tQ[:, r]], axis=1).reshape(2 * S, 3)
+                          for r in (0, -1)])
+        w = {**WEIGHTS, "seam": seam_weight, "ruling_fairness": ruling_fairness, **weights}
+        return cls(layout=layout, P=P, Q=Q, center=center, scale=scale,
+                   reference=_net_surface((f - center) * scale, columns),
+                   samples=strip_quad_samples(layout), end_c=end_c, end_t=end_t,
+                   seam_dirs=_seam_directions(P, Q) if seam_weight > 0 and S > 1 else None,
+                   weights=w)
+
+    def hard_terms(self, order) -> list[Term]:
+        layout, ends = self.layout, np.r_[self.layout.vid[0], self.layout.vid[-1]]
+        end_c, end_t = self.end_c.reshape(-1, 3), self.end_t.reshape(-1, 3)
+        one = Schedule.constant(1.0)
+        return [
+            Term("template_isometry", lambda x: template_isometry(x, layout), one),
+            Term("planarity", lambda x: planarity(x, layout), one),
+            Term("ends", lambda x: lateral(x, layout, end_c, end_t, ends), one),
+            Term("template_gauge", lambda x: template_gauge(x, layout), one),
+            Term("template_order", lambda x: template_order(x, layout, *order), one)]
+
+    def fit(self, A0: np.ndarray, B0: np.ndarray, *, rounds: int = FIT_ROUNDS) -> TemplateFit:
+        """One fit from the strips ``A0, B0 (S, m, 3)`` (unscaled)."""
+        layout = self.layout
+        A, B = (A0 - self.center) * self.scale, (B0 - self.center) * self.scale
+        T0 = start_template(A, B)
+        x = layout.pack(A, B, T0)
+        order = _order_bounds(T0)
+        x[layout.slack_offset:] = np.sqrt(np.maximum(
+            template_order(x, layout, *order)[0] + x[layout.slack_offset:] ** 2, 0.0))
+        hard = self.hard_terms(order)
+        iterations, result = 0, None
+        factors = ROUND_FACTORS[:rounds]
+        for k, factor in enumerate(factors):
+            last = k == len(factors) - 1
+            fitted = guided_projection(x, hard + _soft_terms(x, self, factor), tol=FIT_TOL,
+                                       max_iter=PROJECTION_MAX_ITER if last else ROUND_MAX_ITER,
+                                       workspace=self.workspace)
+            x, self.workspace = fitted.x, fitted.workspace
+            iterations += fitted.iterations
+            result = fitted
+            log.debug("template fit round %d (soft ×%g): %s, R %.3g", k, factor,
+                      fitted.status, fitted.R)
+        if result.R > FIT_TOL:
+            result = guided_projection(x, hard, tol=FIT_TOL, max_iter=PROJECTION_MAX_ITER)
+            iterations += result.iterations
+        template = layout.template(result.x)
+        A1, B1 = bend_template(template, *layout.strips(result.x))
+        s, c = self.scale, self.center
+        return TemplateFit(A=A1 / s + c, B=B1 / s + c, template=template / s,
+                           variant="shared-vertices", status=result.status,
+                           iterations=iterations, R=result.R / s)
 
 
 def fit_template(f: np.ndarray, columns: list[int], A0: np.ndarray, B0: np.ndarray, *,
@@ -262,55 +364,13 @@ def fit_template(f: np.ndarray, columns: list[int], A0: np.ndarray, B0: np.ndarr
     planar strips ``A0, B0 (S, m, 3)`` (see the module). Returns the rebuilt strips.
 
     The soft terms' frames follow the strips: ``rounds`` guided projections, each with the
-    frames taken where the previous one ended (warm start, the same factorization pattern),
-    then a projection onto the hard terms alone (the least change that satisfies them)."""
-    f = np.asarray(f, dtype=float)
-    columns = np.asarray(columns, dtype=int)
-    P, Q = np.moveaxis(f[:, columns], 1, 0), np.moveaxis(f[:, columns + 1], 1, 0)
-    S, m = P.shape[:2]
-    center = f.reshape(-1, 3).mean(axis=0)
-    edges = np.concatenate([np.linalg.norm(np.diff(A0, axis=1), axis=-1).ravel(),
-                            np.linalg.norm(B0 - A0, axis=-1).ravel()])
-    scale = 1.0 / float(np.mean(edges))
-    P, Q = (P - center) * scale, (Q - center) * scale
-    A, B = (A0 - center) * scale, (B0 - center) * scale
-    layout = StripSetLayout(m, S)
-    T0 = start_template(A, B)
-    x = layout.pack(A, B, T0)
-    order = _order_bounds(T0)
-    x[layout.slack_offset:] = np.sqrt(np.maximum(
-        template_order(x, layout, *order)[0] + x[layout.slack_offset:] ** 2, 0.0))
-    # the end rulings: the net's end v-edges (no slide along the geodesic there)
-    ends = np.r_[layout.vid[0], layout.vid[-1]]
-    end_c = np.stack([np.stack([P[:, r], Q[:, r]], axis=1).reshape(2 * S, 3) for r in (0, -1)])
-    tP, tQ = unit(np.gradient(P, axis=1)), unit(np.gradient(Q, axis=1))
-    end_t = np.stack([np.stack([tP[:, r], tQ[:, r]], axis=1).reshape(2 * S, 3) for r in (0, -1)])
-    hard = [
-        Term("template_isometry", lambda x: template_isometry(x, layout), Schedule.constant(1.0)),
-        Term("planarity", lambda x: planarity(x, layout), Schedule.constant(1.0)),
-        Term("ends", lambda x: lateral(x, layout, end_c.reshape(-1, 3), end_t.reshape(-1, 3),
-                                       ends), Schedule.constant(1.0)),
-        Term("template_gauge", lambda x: template_gauge(x, layout), Schedule.constant(1.0)),
-        Term("template_order", lambda x: template_order(x, layout, *order),
-             Schedule.constant(1.0))]
-    reference = _net_surface((f - center) * scale, columns)
-    samples = strip_quad_samples(layout)
-    seam_dirs = _seam_directions(P, Q) if seam_weight > 0 and S > 1 else None
-    workspace, iterations = None, 0
-    for _ in range(rounds):
-        soft = _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight,
-                           ruling_fairness)
-        fitted = guided_projection(x, hard + soft, tol=FIT_TOL, max_iter=ROUND_MAX_ITER,
-                                   workspace=workspace)
-        x, workspace, iterations = fitted.x, fitted.workspace, iterations + fitted.iterations
-    result = guided_projection(x, hard, tol=FIT_TOL, max_iter=PROJECTION_MAX_ITER)
-    template = layout.template(result.x)
-    A1, B1 = bend_template(template, *layout.strips(result.x))
-    log.debug("template fit: %s after %d iterations, R %.3g", result.status,
-              iterations + result.iterations, result.R)
-    return TemplateFit(A=A1 / scale + center, B=B1 / scale + center, template=template / scale,
-                       variant="shared-vertices", status=result.status,
-                       iterations=iterations + result.iterations, R=result.R / scale)
+    frames taken where the previous one ended (warm start, the same factorization pattern)
+    and the soft weights lowered tenfold (:data:`ROUND_FACTORS`), so the last round ends on
+    the hard terms near the best fit; a projection onto the hard terms alone only if it did
+    not reach the tolerance."""
+    problem = TemplateProblem.build(f, columns, seam_weight=seam_weight,
+                                    ruling_fairness=ruling_fairness)
+    return problem.fit(A0, B0, rounds=rounds)
 
 
 def _seam_directions(P, Q):
