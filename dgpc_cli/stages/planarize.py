@@ -46,6 +46,10 @@ POLISH_ABOVE = 1e-10
 CONGRUENT = 1e-9
 #: Factors of the ruling fairness tried in turn until a template fit keeps its rulings in order.
 FAIRNESS_STEPS = (1.0, 10.0, 100.0)
+#: The template fits tried (variant, start), the best kept: the shared vertices and the shared
+#: outline variants fall into different local minima (neither is always the better).
+TEMPLATE_FITS = (("shared-outline", "per-strip"), ("shared-vertices", "per-strip"),
+                 ("shared-vertices", "net"))
 #: A template whose largest deviation from the net exceeds the per-strip strips' by more than
 #: this share of the width is not used (the strips stay on their own, with a warning).
 TEMPLATE_MARGIN = 0.005
@@ -237,13 +241,13 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
     bendings of one template (:mod:`dgpc_cli.strips.template`), and the template's record
     (variant, start, fit outcome, its 2-D boundaries in ``units``, the deviations tried).
 
-    The fit starts once from the per-strip strips and once from the net's own strips (rulings
-    on the v-edges), both on one :class:`~dgpc_cli.strips.template.TemplateProblem` (one
-    setup, one factorization pattern); the fit that stays closer to the net (largest
-    deviation) is kept. Strips that are congruent already (a surface of revolution) are
-    rebuilt from the first one's development without a fit (status ``congruent``). Fits
-    whose template folds (rulings that cross) are refused; the ruling fairness is raised
-    tenfold until one keeps them in order (:data:`FAIRNESS_STEPS`). Without such a fit, or
+    The fits of :data:`TEMPLATE_FITS` (variants shared vertices and shared outline, starts the
+    per-strip strips and the net's own strips with rulings on the v-edges) share one
+    :class:`~dgpc_cli.strips.template.TemplateProblem` (one setup); the fit that stays
+    closer to the net (largest deviation) is kept. Strips that are congruent already (a
+    surface of revolution) are rebuilt from the first one's development without a fit
+    (status ``congruent``). Fits whose template folds (rulings that cross) are refused; the
+    ruling fairness is raised tenfold until one keeps them in order (:data:`FAIRNESS_STEPS`). Without such a fit, or
     when the best one deviates from the net by more than ``margin`` of the width beyond the
     per-strip strips, returns ``(None, record)`` with the record's ``rejected`` saying why.
     """
@@ -265,12 +269,14 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
         best = (0.0, "per-strip", fit, 0.0)
         starts = {}
     for factor in FAIRNESS_STEPS if starts else ():
-        problem = TemplateProblem.build(f, columns, seam_weight=seam_weight,
-                                        ruling_fairness=ruling_fairness * factor)
-        for name, (A0, B0) in starts.items():
+        shared = TemplateProblem.build(f, columns, seam_weight=seam_weight,
+                                       ruling_fairness=ruling_fairness * factor)
+        for (variant, name), (A0, B0) in ((k, starts[k[1]]) for k in TEMPLATE_FITS):
+            problem = shared.with_variant(variant)
             fit = problem.fit(A0, B0)
             worst = _worst_deviation(fit.A, fit.B, P, Q)
-            ordered = _template_ordered(fit.template)
+            ordered = all(_template_ordered(t) for t in (
+                fit.developments if fit.developments is not None else [fit.template]))
             tried.append({"variant": fit.variant, "start": name,
                           "ruling_fairness": ruling_fairness * factor,
                           "deviation": worst, "rulings_ordered": ordered})

@@ -26,6 +26,7 @@ same on every strip.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 from dataclasses import dataclass
 
@@ -34,6 +35,7 @@ import numpy as np
 from dgpc_cli.core.constraints.planarity import lateral, planarity, slide_fairness
 from dgpc_cli.core.constraints.template import (
     StripSetLayout,
+    chebyshev_basis,
     plane_offsets,
     ruling_fairness,
     seam,
@@ -41,6 +43,7 @@ from dgpc_cli.core.constraints.template import (
     template_gauge,
     template_isometry,
     template_order,
+    template_outline,
 )
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.core.solver import Schedule, Term, guided_projection
@@ -52,7 +55,11 @@ from dgpc_cli.strips.quality import patch_mesh
 log = logging.getLogger(__name__)
 
 #: The variants of the fit (see the module).
-VARIANTS = ("shared-vertices",)
+VARIANTS = ("shared-vertices", "shared-outline")
+#: The outline polynomials' y range is the start template's times this (room to move).
+OUTLINE_MARGIN = 1.1
+#: Degree of the Chebyshev polynomials of the shared outline's two curves (at most m − 1).
+OUTLINE_DEGREE = 12
 #: Weights of the soft terms and regularizers in the first round (the hard terms have weight
 #: 1): closeness of the strips to the net, the boundary vertices' distance across their net
 #: geodesic, their slide along it within a round (a proximal term: sliding is free for the
@@ -78,7 +85,8 @@ PROJECTION_MAX_ITER = 30
 class TemplateFit:
     """The fitted strips ``A, B (S, m, 3)`` (rebuilt from the template: exact bendings), the
     template ``(m, 2, 2)`` (``[u, 0] = a_u``, ``[u, 1] = b_u``), the variant and the solver's
-    outcome."""
+    outcome; with a shared outline ``developments (S, m, 2, 2)``, every strip's own (its
+    vertices on the template's outline), the template being the first one's."""
 
     A: np.ndarray
     B: np.ndarray
@@ -87,6 +95,7 @@ class TemplateFit:
     status: str
     iterations: int
     R: float
+    developments: np.ndarray | None = None
 
 
 def closest_on_polylines(X: np.ndarray, P: np.ndarray) -> tuple[np.ndarray, np.ndarray,
@@ -107,24 +116,34 @@ def closest_on_polylines(X: np.ndarray, P: np.ndarray) -> tuple[np.ndarray, np.n
     return c, tangent, seg + np.take_along_axis(t, pick, 2)[..., 0]
 
 
+def start_developments(A: np.ndarray, B: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The developments ``(S, m, 2, 2)`` of planar strips ``A, B (S, m, 3)`` aligned onto
+    their mean (Kabsch), and that mean, the start template ``(m, 2, 2)``: placed with ``a_0`` at
+    the origin and ``b_0`` on the +x axis (the gauge of the fit)."""
+    devs = [develop_strip(a, b) for a, b in zip(A, B, strict=True)]
+    ref = np.concatenate([devs[0].A, devs[0].B])
+    aligned = []
+    for d in devs:
+        X = np.concatenate([d.A, d.B])
+        R, t = kabsch(X, ref, allow_reflection=False)
+        aligned.append(X @ R.T + t)
+    aligned = np.stack(aligned)                                          # (S, 2m, 2)
+    mean = aligned.mean(axis=0)
+    m = A.shape[1]
+    origin = mean[0]
+    ang = np.arctan2(*(mean[m] - origin)[::-1])
+    c, s = np.cos(-ang), np.sin(-ang)
+    rot = np.array([[c, -s], [s, c]])
+    placed = (aligned - origin) @ rot.T
+    devs2 = np.stack([placed[:, :m], placed[:, m:]], axis=2)             # (S, m, 2, 2)
+    return devs2, devs2.mean(axis=0)
+
+
 def start_template(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     """A template ``(m, 2, 2)`` from planar strips ``A, B (S, m, 3)``: their developments
     aligned onto the first one's (Kabsch) and averaged, placed with ``a_0`` at the origin and
     ``b_0`` on the +x axis (the gauge of the fit)."""
-    devs = [develop_strip(a, b) for a, b in zip(A, B, strict=True)]
-    ref = np.concatenate([devs[0].A, devs[0].B])
-    acc = np.zeros_like(ref)
-    for d in devs:
-        X = np.concatenate([d.A, d.B])
-        R, t = kabsch(X, ref, allow_reflection=False)
-        acc += X @ R.T + t
-    mean = acc / len(devs)
-    m = A.shape[1]
-    a, b = mean[:m] - mean[0], mean[m:] - mean[0]
-    ang = np.arctan2(b[0, 1], b[0, 0])
-    c, s = np.cos(-ang), np.sin(-ang)
-    rot = np.array([[c, -s], [s, c]])
-    return np.stack([a @ rot.T, b @ rot.T], axis=1)
+    return start_developments(A, B)[1]
 
 
 def _rotate_about(X, origin, axis, angle):
@@ -139,29 +158,30 @@ def _rotate_about(X, origin, axis, angle):
 
 def bend_template(template: np.ndarray, A: np.ndarray, B: np.ndarray) -> tuple[np.ndarray,
                                                                                 np.ndarray]:
-    """Exact isometric bendings of the ``template (m, 2, 2)`` fitted to the strips ``A, B
-    (S, m, 3)``: quad 0 by Kabsch onto the strip's quad 0, then every next template quad
-    attached to the ruling already placed, flat, and turned about it to the angle that brings
-    its two far vertices closest to the strip's (least squares). Congruent and planar quads to
-    round-off."""
+    """Exact isometric bendings of the ``template (m, 2, 2)`` (or of one development per strip,
+    ``(S, m, 2, 2)``) fitted to the strips ``A, B (S, m, 3)``: quad 0 by Kabsch onto the
+    strip's quad 0, then every next template quad attached to the ruling already placed, flat,
+    and turned about it to the angle that brings its two far vertices closest to the strip's
+    (least squares). Congruent and planar quads to round-off."""
     S, m = A.shape[:2]
-    T = np.concatenate([template, np.zeros((m, 2, 1))], axis=-1)          # (m, 2, 3)
+    template = np.broadcast_to(template, (S, m, 2, 2))
+    T = np.concatenate([template, np.zeros((S, m, 2, 1))], axis=-1)       # (S, m, 2, 3)
     outA, outB = np.empty_like(A), np.empty_like(B)
-    X0 = np.concatenate([T[:2, 0], T[:2, 1]])                              # (4, 3)
     motions = []
     for s in range(S):
+        X0 = np.concatenate([T[s, :2, 0], T[s, :2, 1]])                   # (4, 3)
         Y0 = np.concatenate([A[s, :2], B[s, :2]])
         motions.append(_kabsch3(X0, Y0))
     Rm = np.stack([r for r, _ in motions])                                 # (S, 3, 3)
     tm = np.stack([t for _, t in motions])                                 # (S, 3)
 
-    def place(points):                                                     # (k, 3) -> (S, k, 3)
-        return np.einsum("sij,kj->ski", Rm, points) + tm[:, None]
+    def place(points):                                             # (S, k, 3) -> (S, k, 3)
+        return np.einsum("sij,skj->ski", Rm, points) + tm[:, None]
 
-    first = place(T[:2].reshape(-1, 3)).reshape(S, 2, 2, 3)
+    first = place(T[:, :2].reshape(S, -1, 3)).reshape(S, 2, 2, 3)
     outA[:, :2], outB[:, :2] = first[:, :, 0], first[:, :, 1]
     for u in range(1, m - 1):
-        flat = place(T[u + 1])                                             # (S, 2, 3)
+        flat = place(T[:, u + 1])                                          # (S, 2, 3)
         origin = outA[:, u]
         axis = unit(outB[:, u] - origin)
         x = flat - origin[:, None]
@@ -285,11 +305,19 @@ class TemplateProblem:
     end_t: np.ndarray
     seam_dirs: np.ndarray | None
     weights: dict
+    variant: str = "shared-vertices"
     workspace: object = None
+
+    def with_variant(self, variant: str) -> TemplateProblem:
+        """The same problem for the other ``variant`` (its own layout and workspace)."""
+        degree = min(OUTLINE_DEGREE, self.layout.m - 1) if variant == "shared-outline" else 0
+        return dataclasses.replace(self, variant=variant, workspace=None,
+                                   layout=StripSetLayout(self.layout.m, self.layout.S, degree))
 
     @classmethod
     def build(cls, f: np.ndarray, columns, *, seam_weight: float = SEAM_WEIGHT,
-              ruling_fairness: float = RULING_FAIRNESS, **weights) -> TemplateProblem:
+              ruling_fairness: float = RULING_FAIRNESS, variant: str = "shared-vertices",
+              **weights) -> TemplateProblem:
         f = np.asarray(f, dtype=float)
         columns = np.asarray(columns, dtype=int)
         P, Q = np.moveaxis(f[:, columns], 1, 0), np.moveaxis(f[:, columns + 1], 1, 0)
@@ -307,13 +335,14 @@ class TemplateProblem:
         end_t = np.stack([np.stack([tP[:, r], tQ[:, r]], axis=1).reshape(2 * S, 3)
                           for r in (0, -1)])
         w = {**WEIGHTS, "seam": seam_weight, "ruling_fairness": ruling_fairness, **weights}
-        return cls(layout=layout, P=P, Q=Q, center=center, scale=scale,
-                   reference=_net_surface((f - center) * scale, columns),
-                   samples=strip_quad_samples(layout), end_c=end_c, end_t=end_t,
-                   seam_dirs=_seam_directions(P, Q) if seam_weight > 0 and S > 1 else None,
-                   weights=w)
+        problem = cls(layout=layout, P=P, Q=Q, center=center, scale=scale,
+                      reference=_net_surface((f - center) * scale, columns),
+                      samples=strip_quad_samples(layout), end_c=end_c, end_t=end_t,
+                      seam_dirs=_seam_directions(P, Q) if seam_weight > 0 and S > 1 else None,
+                      weights=w)
+        return problem if variant == "shared-vertices" else problem.with_variant(variant)
 
-    def hard_terms(self, order) -> list[Term]:
+    def hard_terms(self, order, outline=None) -> list[Term]:
         layout, ends = self.layout, np.r_[self.layout.vid[0], self.layout.vid[-1]]
         end_c, end_t = self.end_c.reshape(-1, 3), self.end_t.reshape(-1, 3)
         one = Schedule.constant(1.0)
@@ -322,18 +351,31 @@ class TemplateProblem:
             Term("planarity", lambda x: planarity(x, layout), one),
             Term("ends", lambda x: lateral(x, layout, end_c, end_t, ends), one),
             Term("template_gauge", lambda x: template_gauge(x, layout), one),
-            Term("template_order", lambda x: template_order(x, layout, *order), one)]
+            Term("template_order", lambda x: template_order(x, layout, *order), one)] + (
+            [Term("template_outline", lambda x: template_outline(x, layout, *outline), one)]
+            if outline is not None else [])
 
     def fit(self, A0: np.ndarray, B0: np.ndarray, *, rounds: int = FIT_ROUNDS) -> TemplateFit:
         """One fit from the strips ``A0, B0 (S, m, 3)`` (unscaled)."""
         layout = self.layout
         A, B = (A0 - self.center) * self.scale, (B0 - self.center) * self.scale
-        T0 = start_template(A, B)
-        x = layout.pack(A, B, T0)
+        devs, T0 = start_developments(A, B)
+        outline = None
+        if layout.outline_degree > 0:
+            y = T0[..., 1]
+            outline = (0.5 * float(y.max() + y.min()), OUTLINE_MARGIN * 0.5 * float(np.ptp(y)))
+            V, _ = chebyshev_basis((devs[..., 1].reshape(-1) - outline[0]) / outline[1],
+                                   layout.outline_degree)
+            side = np.tile([0, 1], devs.shape[0] * devs.shape[1])
+            coefficients = np.stack([np.linalg.lstsq(V[side == j], devs[..., 0].reshape(-1)[
+                side == j], rcond=None)[0] for j in (0, 1)])
+            x = layout.pack(A, B, devs, coefficients)
+        else:
+            x = layout.pack(A, B, T0)
         order = _order_bounds(T0)
         x[layout.slack_offset:] = np.sqrt(np.maximum(
             template_order(x, layout, *order)[0] + x[layout.slack_offset:] ** 2, 0.0))
-        hard = self.hard_terms(order)
+        hard = self.hard_terms(order, outline)
         iterations, result = 0, None
         factors = ROUND_FACTORS[:rounds]
         for k, factor in enumerate(factors):
@@ -352,14 +394,17 @@ class TemplateProblem:
         template = layout.template(result.x)
         A1, B1 = bend_template(template, *layout.strips(result.x))
         s, c = self.scale, self.center
-        return TemplateFit(A=A1 / s + c, B=B1 / s + c, template=template / s,
-                           variant="shared-vertices", status=result.status,
-                           iterations=iterations, R=result.R / s)
+        devs = template if layout.outline_degree > 0 else None
+        return TemplateFit(A=A1 / s + c, B=B1 / s + c,
+                           template=(template if devs is None else devs[0]) / s,
+                           variant=self.variant, status=result.status,
+                           iterations=iterations, R=result.R / s,
+                           developments=None if devs is None else devs / s)
 
 
 def fit_template(f: np.ndarray, columns: list[int], A0: np.ndarray, B0: np.ndarray, *,
                  seam_weight: float = SEAM_WEIGHT, ruling_fairness: float = RULING_FAIRNESS,
-                 rounds: int = FIT_ROUNDS) -> TemplateFit:
+                 variant: str = "shared-vertices", rounds: int = FIT_ROUNDS) -> TemplateFit:
     """Fit one template to the strips ``columns`` of the net ``f (m, n, 3)``, starting from the
     planar strips ``A0, B0 (S, m, 3)`` (see the module). Returns the rebuilt strips.
 
@@ -369,7 +414,7 @@ def fit_template(f: np.ndarray, columns: list[int], A0: np.ndarray, B0: np.ndarr
     the hard terms near the best fit; a projection onto the hard terms alone only if it did
     not reach the tolerance."""
     problem = TemplateProblem.build(f, columns, seam_weight=seam_weight,
-                                    ruling_fairness=ruling_fairness)
+                                    ruling_fairness=ruling_fairness, variant=variant)
     return problem.fit(A0, B0, rounds=rounds)
 
 
