@@ -249,7 +249,8 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
     (status ``congruent``). Fits whose template folds (rulings that cross) are refused; the
     ruling fairness is raised tenfold until one keeps them in order (:data:`FAIRNESS_STEPS`).
     Without such a fit, or when the best one deviates from the net by more than ``margin`` of
-    the width beyond the per-strip strips, returns ``(None, record)`` with the record's ``rejected`` saying why.
+    the width beyond the per-strip strips, returns ``(None, record)``, the record's
+    ``rejected`` saying why.
     """
     f = np.asarray(f, dtype=float)
     columns = [s.v for s in strips]
