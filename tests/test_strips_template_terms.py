@@ -11,6 +11,7 @@ from dgpc_cli.core.constraints.template import (
     StripSetLayout,
     plane_offsets,
     ruling_fairness,
+    ruling_turn,
     seam,
     strip_quad_samples,
     template_gauge,
@@ -20,9 +21,10 @@ from dgpc_cli.core.constraints.template import (
 )
 
 NAMES = ["template_isometry", "template_gauge", "template_order", "ruling_fairness", "seam",
-         "plane_offsets", "planarity", "lateral", "surface_closeness"]
+         "plane_offsets", "planarity", "lateral", "surface_closeness", "ruling_turn"]
 #: Terms on the shared-outline layout (one development per strip, outline coefficients).
-OUTLINE_NAMES = ["template_isometry", "template_order", "template_outline", "ruling_fairness"]
+OUTLINE_NAMES = ["template_isometry", "template_order", "template_outline", "ruling_fairness",
+                 "ruling_turn"]
 
 
 def _state(layout, rng):
@@ -53,6 +55,7 @@ def _terms(layout, rng):
             "template_gauge": lambda x: template_gauge(x, layout),
             "template_order": lambda x: template_order(x, layout, [0.6, 0.8], -1.0, 0.1, 0.2),
             "template_outline": lambda x: template_outline(x, layout, 0.4, 0.7),
+            "ruling_turn": lambda x: ruling_turn(x, layout, 0.36),
             "ruling_fairness": lambda x: ruling_fairness(x, layout),
             "seam": lambda x: seam(x, layout, d),
             "plane_offsets": lambda x: plane_offsets(x, layout, samples, frozen.p, frozen.n),
@@ -134,3 +137,23 @@ def test_template_outline_vanishes_on_developments_on_the_outline_only():
     T3[2, -1, 1, 0] = chebyshev.chebval((T3[2, -1, 1, 1] - y0) / h, c[1])
     phi3 = template_outline(layout.pack(A, A, T3, c), layout, y0, h)[0]
     assert np.abs(phi3[: S * m * 2]).max() <= 1e-12 and np.abs(phi3).max() > 0.09
+
+
+def test_ruling_turn_holds_for_rulings_within_the_angle_only():
+    """With the slack σ² taken by the residual's value, the term vanishes for rulings that turn
+    by less than θ and not for a pair turning by more (whatever the sense) or reversing."""
+    layout = StripSetLayout(3, 1)
+    tan_max = np.tan(np.radians(20.0))
+
+    def worst(angles):
+        r = np.stack([np.cos(np.radians(angles)), np.sin(np.radians(angles))], -1)
+        T = np.stack([np.zeros((3, 2)), r], axis=1)
+        x = layout.pack(np.zeros((1, 3, 3)), np.zeros((1, 3, 3)), T)
+        g, _ = ruling_turn(x, layout, tan_max)
+        x[layout.turn_offset:] = np.sqrt(np.maximum(g, 0.0))
+        return np.abs(ruling_turn(x, layout, tan_max)[0]).max()
+
+    assert worst([0.0, 19.0, 0.0]) <= 1e-12
+    assert worst([0.0, 21.0, 42.0]) > 1e-3
+    assert worst([0.0, -25.0, -20.0]) > 1e-3
+    assert worst([0.0, 180.0, 180.0]) > 1e-3

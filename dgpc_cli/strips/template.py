@@ -38,6 +38,7 @@ from dgpc_cli.core.constraints.template import (
     chebyshev_basis,
     plane_offsets,
     ruling_fairness,
+    ruling_turn,
     seam,
     strip_quad_samples,
     template_gauge,
@@ -64,7 +65,10 @@ OUTLINE_DEGREE = 12
 #: 1): closeness of the strips to the net, the boundary vertices' distance across their net
 #: geodesic, their slide along it within a round (a proximal term: sliding is free for the
 #: closeness), the fairness of the slides.
-WEIGHTS = {"closeness": 1e-3, "across": 1e-3, "slide": 1e-5, "slide_fairness": 1e-8}
+WEIGHTS = {"closeness": 1e-3, "across": 1e-3, "slide": 1e-5, "slide_fairness": 1e-8,
+           "max_ruling_turn": 20.0}
+#: (``max_ruling_turn``: not a weight, the largest angle in degrees between neighbouring
+#: rulings, a hard bound: :func:`~dgpc_cli.core.constraints.template.ruling_turn`.)
 #: Weight of the fairness of the ruling vectors.
 RULING_FAIRNESS = 1e-7
 #: Factors of the soft weights, one per round.
@@ -342,7 +346,7 @@ class TemplateProblem:
                       weights=w)
         return problem if variant == "shared-vertices" else problem.with_variant(variant)
 
-    def hard_terms(self, order, outline=None) -> list[Term]:
+    def hard_terms(self, order, outline, tan_max) -> list[Term]:
         layout, ends = self.layout, np.r_[self.layout.vid[0], self.layout.vid[-1]]
         end_c, end_t = self.end_c.reshape(-1, 3), self.end_t.reshape(-1, 3)
         one = Schedule.constant(1.0)
@@ -351,7 +355,8 @@ class TemplateProblem:
             Term("planarity", lambda x: planarity(x, layout), one),
             Term("ends", lambda x: lateral(x, layout, end_c, end_t, ends), one),
             Term("template_gauge", lambda x: template_gauge(x, layout), one),
-            Term("template_order", lambda x: template_order(x, layout, *order), one)] + (
+            Term("template_order", lambda x: template_order(x, layout, *order), one),
+            Term("ruling_turn", lambda x: ruling_turn(x, layout, tan_max), one)] + (
             [Term("template_outline", lambda x: template_outline(x, layout, *outline), one)]
             if outline is not None else [])
 
@@ -373,9 +378,11 @@ class TemplateProblem:
         else:
             x = layout.pack(A, B, T0)
         order = _order_bounds(T0)
-        x[layout.slack_offset:] = np.sqrt(np.maximum(
-            template_order(x, layout, *order)[0] + x[layout.slack_offset:] ** 2, 0.0))
-        hard = self.hard_terms(order, outline)
+        x[layout.slack_offset:layout.turn_offset] = np.sqrt(np.maximum(
+            template_order(x, layout, *order)[0], 0.0))
+        tan_max = np.tan(np.radians(self.weights["max_ruling_turn"]))
+        x[layout.turn_offset:] = np.sqrt(np.maximum(ruling_turn(x, layout, tan_max)[0], 0.0))
+        hard = self.hard_terms(order, outline, tan_max)
         iterations, result = 0, None
         factors = ROUND_FACTORS[:rounds]
         for k, factor in enumerate(factors):

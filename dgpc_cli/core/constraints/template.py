@@ -25,6 +25,7 @@ Terms of its own (``term(x, layout, ...) -> (phi, J)``, value-independent COO pa
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -105,8 +106,13 @@ class StripSetLayout:
         return self.c_offset + (2 * (self.outline_degree + 1) if self.outline_degree > 0 else 0)
 
     @property
-    def size(self) -> int:
+    def turn_offset(self) -> int:
+        """Columns of the slack variables of :func:`ruling_turn`, ``2 (m−1) D``."""
         return self.slack_offset + 3 * (self.m - 1) * self.n_devs
+
+    @property
+    def size(self) -> int:
+        return self.turn_offset + 2 * (self.m - 1) * self.n_devs
 
     def f_cols(self, vertex_ids) -> np.ndarray:
         """Columns of p_i, shape ``(*vertex_ids.shape, 3)``."""
@@ -155,7 +161,7 @@ class StripSetLayout:
         c = (np.asarray(coefficients, float).ravel() if self.outline_degree > 0
              else np.zeros(0))
         return np.concatenate([p.ravel(), n.ravel(), np.asarray(template, float).ravel(), c,
-                               np.zeros(3 * (self.m - 1) * self.n_devs)])
+                               np.zeros(5 * (self.m - 1) * self.n_devs)])
 
 
 def template_isometry(x, layout: StripSetLayout):
@@ -248,7 +254,7 @@ def template_order(x, layout: StripSetLayout, direction, sign, step, area):
     rulings cross (no folded quad). Quadratic."""
     m, D = layout.m, layout.n_devs
     t = x[layout.t_offset:layout.c_offset].reshape(D, m, 2, 2)
-    sig = x[layout.slack_offset:].reshape(3, D, m - 1)
+    sig = x[layout.slack_offset:layout.turn_offset].reshape(3, D, m - 1)
     e = np.asarray(direction, dtype=float)
     a, b = t[:, :, 0], t[:, :, 1]
     d1, d2 = b[:, 1:] - a[:, :-1], a[:, 1:] - b[:, :-1]
@@ -271,15 +277,54 @@ def template_order(x, layout: StripSetLayout, direction, sign, step, area):
     return phi, J
 
 
+def ruling_turn(x, layout: StripSetLayout, tan_max: float):
+    """Residuals ``tan θ · ⟨r_u, r_(u+1)⟩ ∓ r_u × r_(u+1) − σ²`` (2 per pair of neighbouring
+    rulings ``r_u = b_u − a_u`` of every development, Tang et al. 2014's slack form of ``g ≥
+    0``): both hold exactly when the rulings turn by at most θ (``tan_max`` = tan θ) and keep
+    their sense. A planar quad holds both its rulings, so this is also their angle in 3-D: the
+    score lines of neighbouring quads stay within θ. Quadratic."""
+    m, D = layout.m, layout.n_devs
+    t = x[layout.t_offset:layout.c_offset].reshape(D, m, 2, 2)
+    sig = x[layout.turn_offset:].reshape(2, D, m - 1)
+    r = t[:, :, 1] - t[:, :, 0]                                            # (D, m, 2)
+    r0, r1 = r[:, :-1], r[:, 1:]
+    dot = np.einsum("dui,dui->du", r0, r1)
+    cross = r0[..., 0] * r1[..., 1] - r0[..., 1] * r1[..., 0]
+    phi = np.concatenate([(tan_max * dot - cross - sig[0] ** 2).ravel(),
+                          (tan_max * dot + cross - sig[1] ** 2).ravel()])
+    n = D * (m - 1)
+    ia = (2 * m * np.arange(D)[:, None] + 2 * np.arange(m - 1)[None]).ravel()  # ids of a_u
+    rr0, rr1 = r0.reshape(-1, 2), r1.reshape(-1, 2)
+    dc0 = np.stack([rr1[:, 1], -rr1[:, 0]], -1)                           # ∂cross/∂r_u
+    dc1 = np.stack([-rr0[:, 1], rr0[:, 0]], -1)                           # ∂cross/∂r_(u+1)
+    blocks = []
+    for k, sign in ((0, -1.0), (1, 1.0)):
+        rows = (k * n + np.arange(n))[:, None]
+        g0, g1 = tan_max * rr1 + sign * dc0, tan_max * rr0 + sign * dc1   # ∂/∂r_u, ∂/∂r_(u+1)
+        blocks += [(rows, layout.t_cols(ia + 1), g0), (rows, layout.t_cols(ia), -g0),
+                   (rows, layout.t_cols(ia + 3), g1), (rows, layout.t_cols(ia + 2), -g1)]
+    blocks.append((np.arange(2 * n), layout.turn_offset + np.arange(2 * n), -2.0 * sig.ravel()))
+    return phi, jacobian(phi.size, layout.size, *blocks)
+
+
+@functools.lru_cache(maxsize=8)
+def _chebyshev_derivative(degree: int) -> np.ndarray:
+    """``(d+1, d+1)``: column k holds the Chebyshev coefficients of ``T_k'``."""
+    from numpy.polynomial import chebyshev
+
+    out = np.stack([np.pad(chebyshev.chebder(np.eye(degree + 1)[k]), (0, 1))
+                    for k in range(degree + 1)], axis=1)
+    out.setflags(write=False)
+    return out
+
+
 def chebyshev_basis(y, degree: int) -> tuple[np.ndarray, np.ndarray]:
     """Chebyshev polynomials ``T_0 .. T_d`` and their derivatives at ``y (k,)``, each
     ``(k, d+1)``."""
     from numpy.polynomial import chebyshev
 
     V = chebyshev.chebvander(np.asarray(y, dtype=float), degree)
-    dT = np.stack([np.pad(chebyshev.chebder(np.eye(degree + 1)[k]), (0, 1))
-                   for k in range(degree + 1)], axis=1)                   # (d+1, d+1)
-    return V, V @ dT
+    return V, V @ _chebyshev_derivative(degree)
 
 
 def template_outline(x, layout: StripSetLayout, y0: float, h: float):
