@@ -9,19 +9,32 @@ place. The fit (:func:`fit_template`) solves, by guided projection, for one flat
 * hard: every strip quad congruent to the template quad (edges, ruling and both diagonals,
   :func:`~dgpc_cli.core.constraints.template.template_isometry`), planar, its boundary vertices
   on their net geodesic (no move across it), the end rulings on the net's end v-edges (the parts
-  cover the design edge to edge), the template's rigid motions fixed;
+  cover the design edge to edge), the template's rigid motions fixed, its quads not folded and
+  neighbouring rulings within 20° (:func:`~dgpc_cli.core.constraints.template.ruling_turn`);
 * soft: the strips' quads (3 × 3 samples of each) close to the net (point-to-plane, §5.1),
-  and optionally the seams: neighbouring strips' boundaries on the same geodesic;
-* regularizers: fairness of the ruling vectors and of the vertices' slides along the geodesics.
+  the boundary vertices on their geodesic, and optionally the seams: neighbouring strips'
+  boundaries on the same geodesic;
+* regularizers: fairness of the ruling vectors and of the vertices' slides along the geodesics,
+  and a proximal term on the slides within a round.
 
-It starts from the per-strip planar strips (ends on the end v-edges) and a template averaged
-from their developments. Afterwards every strip is rebuilt from the template quad by quad
-(:func:`bend_template`): quad 0 placed by Kabsch onto the fitted quad, each next quad turned
-about the ruling it shares with the previous one to its best angle. The rebuilt strips are exact
-isometric bendings of the template: congruent and planar to round-off.
+One :class:`TemplateProblem` holds what every start shares (scaled net, reference surface,
+samples, end edges, weights, the solver's workspace). A fit starts from planar strips (the
+per-strip ones, ends on the end v-edges, or the net's own) and a template averaged from their
+developments, and runs a few rounds of guided projection, the frames of the soft terms taken
+anew and their weights lowered tenfold each round (a penalty method whose last round ends on
+the hard terms close to the best fit; one projection onto the hard terms alone, the least
+change, if it did not reach the tolerance). Afterwards every strip is rebuilt from the
+template quad by quad (:func:`bend_template`): quad 0 placed by Kabsch onto the fitted quad,
+each next quad turned about the ruling it shares with the previous one to its best angle. The
+rebuilt strips are exact isometric bendings of the template: congruent and planar to
+round-off.
 
 Variant ``shared-vertices``: the template's vertices, hence its rulings (score lines), are the
-same on every strip.
+same on every strip. Variant ``shared-outline``: every strip has its own development (its own
+score lines) whose boundary vertices lie on two outline curves shared by all strips (Chebyshev
+polynomials of low degree in the template's frame), with the end edges shared: one outline to
+cut, each copy scored for its own bending. Its strips' polylines differ by the curves' sag
+between neighbouring vertices (hundredths of a millimetre on the pipelines' walls).
 """
 
 from __future__ import annotations

@@ -20,7 +20,11 @@ Terms of its own (``term(x, layout, ...) -> (phi, J)``, value-independent COO pa
 * ruling fairness: second differences along u of the ruling vectors ``B_u − A_u`` (rulings
   that turn smoothly: score lines that do not zigzag);
 * seam: ``⟨d, B_(s,u) − A_(s+1,u)⟩`` for the directions d across the shared geodesic and along
-  the surface normal: neighbouring strips' boundaries on the same geodesic (no step, no gap).
+  the surface normal: neighbouring strips' boundaries on the same geodesic (no step, no gap);
+* template order and ruling turn (slack form of inequalities): no folded template quad, and
+  neighbouring rulings within an angle;
+* template outline (variant shared outline, one development per strip): every development's
+  boundary vertices on the two shared outline curves, the end edges shared.
 """
 
 from __future__ import annotations
