@@ -46,10 +46,10 @@ POLISH_ABOVE = 1e-10
 CONGRUENT = 1e-9
 #: Factors of the ruling fairness tried in turn until a template fit keeps its rulings in order.
 FAIRNESS_STEPS = (1.0, 10.0, 100.0)
-#: The template fits tried (variant, start), the best kept: the shared vertices and the shared
-#: outline variants fall into different local minima (neither is always the better).
-TEMPLATE_FITS = (("shared-outline", "per-strip"), ("shared-vertices", "per-strip"),
-                 ("shared-vertices", "net"))
+#: The template fits tried (variant, start), the best kept: each variant from the start that
+#: suited it best on the pipelines' nets (shared outline from the per-strip strips, shared
+#: vertices from the net's own strips).
+TEMPLATE_FITS = (("shared-outline", "per-strip"), ("shared-vertices", "net"))
 #: A template whose largest deviation from the net exceeds the per-strip strips' by more than
 #: this share of the width is not used (the strips stay on their own, with a warning).
 TEMPLATE_MARGIN = 0.005
@@ -272,9 +272,9 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
     for factor in FAIRNESS_STEPS if starts else ():
         shared = TemplateProblem.build(f, columns, seam_weight=seam_weight,
                                        ruling_fairness=ruling_fairness * factor)
+        problems = {v: shared.with_variant(v) for v in {v for v, _ in TEMPLATE_FITS}}
         for (variant, name), (A0, B0) in ((k, starts[k[1]]) for k in TEMPLATE_FITS):
-            problem = shared.with_variant(variant)
-            fit = problem.fit(A0, B0)
+            fit = problems[variant].fit(A0, B0)
             worst = _worst_deviation(fit.A, fit.B, P, Q)
             ordered = all(_template_ordered(t) for t in (
                 fit.developments if fit.developments is not None else [fit.template]))

@@ -73,7 +73,7 @@ VARIANTS = ("shared-vertices", "shared-outline")
 #: The outline polynomials' y range is the start template's times this (room to move).
 OUTLINE_MARGIN = 1.1
 #: Degree of the Chebyshev polynomials of the shared outline's two curves (at most m − 1).
-OUTLINE_DEGREE = 12
+OUTLINE_DEGREE = 6
 #: Weights of the soft terms and regularizers in the first round (the hard terms have weight
 #: 1): closeness of the strips to the net, the boundary vertices' distance across their net
 #: geodesic, their slide along it within a round (a proximal term: sliding is free for the
@@ -85,7 +85,7 @@ WEIGHTS = {"closeness": 1e-3, "across": 1e-3, "slide": 1e-5, "slide_fairness": 1
 #: Weight of the fairness of the ruling vectors.
 RULING_FAIRNESS = 1e-7
 #: Factors of the soft weights, one per round.
-ROUND_FACTORS = (1.0, 0.1, 0.01, 1e-3, 1e-4, 1e-5)
+ROUND_FACTORS = (1.0, 0.1, 0.01, 1e-3)
 #: The template's boundary steps and quad turns stay above this fraction of their mean (no
 #: folded quad, no crossing rulings).
 ORDER_MARGIN = 0.2
@@ -93,8 +93,10 @@ ORDER_MARGIN = 0.2
 SEAM_WEIGHT = 0.0
 #: Tolerance (hard residual at mean edge length 1) and iteration limit of the fit.
 FIT_TOL = 1e-10
-FIT_ROUNDS = 6
-ROUND_MAX_ITER = 40
+FIT_ROUNDS = 4
+ROUND_MAX_ITER = 30
+#: Rounds stop once their objective fell by less than 0.1 % over this many iterations.
+ROUND_STAGNATION = 10
 PROJECTION_MAX_ITER = 30
 
 
@@ -402,6 +404,7 @@ class TemplateProblem:
             last = k == len(factors) - 1
             fitted = guided_projection(x, hard + _soft_terms(x, self, factor), tol=FIT_TOL,
                                        max_iter=PROJECTION_MAX_ITER if last else ROUND_MAX_ITER,
+                                       stagnation_window=ROUND_STAGNATION,
                                        workspace=self.workspace)
             x, self.workspace = fitted.x, fitted.workspace
             iterations += fitted.iterations
