@@ -17,6 +17,7 @@ from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.strips import StripsArtifact, strips_files
 from dgpc_cli.stages.planarize import (
     FLAT_ANGLE,
+    MAX_RULING_TURN,
     POLISH_ABOVE,
     RULING_FAIRNESS,
     SEAM_WEIGHT,
@@ -71,12 +72,16 @@ def _outline(net, json_path):
               help="Template fit: weight of the rulings' smoothness (second differences of the "
                    "ruling vectors): higher keeps neighbouring score lines closer to parallel, "
                    "lower lets the strips follow the net more closely.")
+@click.option("--max-ruling-turn", type=FiniteFloat(min=1, max=89), default=MAX_RULING_TURN,
+              show_default=True,
+              help="Template fit: largest angle in degrees between neighbouring rulings (score "
+                   "lines); a larger angle lets the strips follow the net more closely.")
 @output_opt
 @force_opt
 @format_opt
 @click.pass_context
 def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, seam_weight,
-                         ruling_fairness, output, force, fmt):
+                         ruling_fairness, max_ruling_turn, output, force, fmt):
     """Turn the geodesic strips of the net STEM into discrete developable strips (paper §6.2.4).
 
     Rulings follow the cross products N × N1 of neighbouring normals (averaged across flat
@@ -108,7 +113,8 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
                  "surface of revolution with equal strip widths)")
         fitted, record = template_strips(net.f_mm, strips, net.units,
                                          seam_weight=seam_weight,
-                                         ruling_fairness=ruling_fairness)
+                                         ruling_fairness=ruling_fairness,
+                                         max_ruling_turn=max_ruling_turn)
         if fitted is None:
             log.warning("planarize-strips: every strip on its own, no shared template: %s",
                         record["rejected"])
@@ -138,6 +144,7 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
                     "polish_above": POLISH_ABOVE, "trim": trim,
                     "method": "per-strip" if template is None else "template",
                     "seam_weight": seam_weight, "ruling_fairness": ruling_fairness,
+                    "max_ruling_turn": max_ruling_turn,
                     **({"template_rejected": fallback} if fallback else {})},
         template=template,
         inputs={"net": file_input(json_path, out_json.resolve().parent)},

@@ -24,6 +24,7 @@ from dgpc_cli.strips.rulings import (
     strip_normals,
 )
 from dgpc_cli.strips.template import (
+    MAX_RULING_TURN,
     RULING_FAIRNESS,
     SEAM_WEIGHT,
     TemplateFit,
@@ -235,7 +236,7 @@ def _worst_deviation(A, B, P, Q) -> float:
 
 def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
                     seam_weight: float = SEAM_WEIGHT, ruling_fairness: float = RULING_FAIRNESS,
-                    margin: float = TEMPLATE_MARGIN
+                    max_ruling_turn: float = MAX_RULING_TURN, margin: float = TEMPLATE_MARGIN
                     ) -> tuple[list[PlanarStrip] | None, dict]:
     """The planar strips ``strips`` (per-strip, of the net ``f`` in mm) replaced by exact
     bendings of one template (:mod:`dgpc_cli.strips.template`), and the template's record
@@ -271,7 +272,8 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
         starts = {}
     for factor in FAIRNESS_STEPS if starts else ():
         shared = TemplateProblem.build(f, columns, seam_weight=seam_weight,
-                                       ruling_fairness=ruling_fairness * factor)
+                                       ruling_fairness=ruling_fairness * factor,
+                                       max_ruling_turn=max_ruling_turn)
         problems = {v: shared.with_variant(v) for v in {v for v, _ in TEMPLATE_FITS}}
         for (variant, name), (A0, B0) in ((k, starts[k[1]]) for k in TEMPLATE_FITS):
             fit = problems[variant].fit(A0, B0)
@@ -309,6 +311,7 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
             deviation=deviation(a, b, P[i], Q[i]) / strip.width,
             rulings_ordered=True))
     record = {"variant": fit.variant, "start": start, "ruling_fairness": fairness,
+              "max_ruling_turn": max_ruling_turn,
               "status": fit.status, "iterations": fit.iterations,
               "A": from_mm(fit.template[:, 0], units), "B": from_mm(fit.template[:, 1], units),
               **record}

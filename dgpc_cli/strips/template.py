@@ -80,6 +80,8 @@ OUTLINE_DEGREE = 6
 #: closeness), the fairness of the slides.
 WEIGHTS = {"closeness": 1e-3, "across": 1e-3, "slide": 1e-5, "slide_fairness": 1e-8,
            "max_ruling_turn": 20.0}
+#: The default largest turn between neighbouring rulings, degrees.
+MAX_RULING_TURN = WEIGHTS["max_ruling_turn"]
 #: (``max_ruling_turn``: not a weight, the largest angle in degrees between neighbouring
 #: rulings, a hard bound: :func:`~dgpc_cli.core.constraints.template.ruling_turn`.)
 #: Weight of the fairness of the ruling vectors.
