@@ -204,3 +204,23 @@ def test_a_template_worse_than_the_strips_on_their_own_is_refused(bent):
     fitted, record = template_strips(f, strips, "mm", margin=1.0)
     assert fitted is not None and "rejected" not in record
     assert record["variant"] in VARIANTS
+
+
+def test_the_artifact_takes_both_variants_and_refuses_others(bent):
+    """A strips artifact with a shared-outline template reads back; an unknown variant is
+    refused on write (schema)."""
+    import dataclasses
+
+    from dgpc_cli.errors import DgpcError
+    from dgpc_cli.io.atomic import write_files
+    from dgpc_cli.io.strips import strips_files
+
+    if not (bent / "s.json").exists():
+        dgpc("planarize-strips", bent / "bent", "-o", bent / "s")
+    art = read_strips(bent / "s")
+    outline = dataclasses.replace(art, template={**art.template, "variant": "shared-outline"})
+    write_files(strips_files(bent / "so", outline), force=True)
+    assert read_strips(bent / "so").template["variant"] == "shared-outline"
+    bogus = dataclasses.replace(art, template={**art.template, "variant": "per-vertex"})
+    with pytest.raises((DgpcError, ValueError)):
+        strips_files(bent / "sb", bogus)
