@@ -339,6 +339,8 @@ class TemplateProblem:
     def build(cls, f: np.ndarray, columns, *, seam_weight: float = SEAM_WEIGHT,
               ruling_fairness: float = RULING_FAIRNESS, variant: str = "shared-vertices",
               **weights) -> TemplateProblem:
+        """The problem of the strips ``columns`` of the net ``f (m, n, 3)`` for ``variant``;
+        ``weights`` override :data:`WEIGHTS` by name."""
         f = np.asarray(f, dtype=float)
         columns = np.asarray(columns, dtype=int)
         P, Q = np.moveaxis(f[:, columns], 1, 0), np.moveaxis(f[:, columns + 1], 1, 0)
@@ -364,6 +366,9 @@ class TemplateProblem:
         return problem if variant == "shared-vertices" else problem.with_variant(variant)
 
     def hard_terms(self, order, outline, tan_max) -> list[Term]:
+        """The hard terms: ``order`` the bounds of :func:`template_order`, ``outline`` the
+        ``(y0, h)`` of :func:`template_outline` (None for shared vertices), ``tan_max`` the
+        tangent of the largest ruling turn."""
         layout, ends = self.layout, np.r_[self.layout.vid[0], self.layout.vid[-1]]
         end_c, end_t = self.end_c.reshape(-1, 3), self.end_t.reshape(-1, 3)
         one = Schedule.constant(1.0)
