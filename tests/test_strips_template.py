@@ -12,11 +12,13 @@ from cli_helpers import add_noise, dgpc
 from dgpc_cli.io.net import NetArtifact, read_net, write_net
 from dgpc_cli.io.strips import read_strips
 from dgpc_cli.io.units import from_mm
-from dgpc_cli.stages.planarize import planarize_strips
+from dgpc_cli.stages.planarize import planarize_strips, template_strips
 from dgpc_cli.strips.congruence import align
 from dgpc_cli.strips.develop import develop_strip
+from dgpc_cli.strips.fabrication import polyline_foot, ruling_angles
 from dgpc_cli.strips.quality import deviation, planarity_defect
 from dgpc_cli.strips.template import (
+    VARIANTS,
     _rotate_about,
     bend_template,
     closest_on_polylines,
@@ -45,15 +47,18 @@ def test_one_template_congruent_planar_edge_to_edge(bent):
     assert "per-strip" not in result.stderr
     art = read_strips(bent / "s")
     assert art.parameters["method"] == "template"
-    assert art.template["variant"] == "shared-vertices"
+    assert art.template["variant"] in VARIANTS
+    if art.template["status"] != "congruent":
+        assert {t["variant"] for t in art.template["tried"]} == set(VARIANTS)
     f = read_net(bent / "bent").f
     width = _widths(f)
     devs = [develop_strip(A, B) for A, B in art.geometry]
     T = np.asarray(art.template["A"]), np.asarray(art.template["B"])
     for (A, B), d in zip(art.geometry, devs, strict=True):
         assert planarity_defect(A, B).max() <= 1e-9
-        assert align(d.A, d.B, devs[0].A, devs[0].B).error <= 1e-6 * width   # one outline
-        assert align(d.A, d.B, *T).error <= 1e-6 * width                     # the template's
+        assert align(d.A, d.B, devs[0].A, devs[0].B).error <= 1e-4 * width   # one outline
+        assert align(d.A, d.B, *T).error <= 1e-4 * width                     # the template's
+        assert ruling_angles(A, B).max() <= 20.0 + 1e-6
     for (A, B), r in zip(art.geometry, art.records, strict=True):
         v = r["v"]
         for X, g in ((A, f[:, v]), (B, f[:, v + 1])):
@@ -135,3 +140,87 @@ def test_the_fit_from_the_net_gives_one_template_edge_to_edge(bent):
             _, _, t = closest_on_polylines(X[None, [0, -1]], g[None])
             assert np.allclose(t[0], [0.0, f.shape[0] - 1.0], atol=1e-6)
         assert deviation(A, B, p, q) <= 0.02 * width
+
+
+def _warped(d):
+    """The bent net warped a little: its strips are no longer congruent."""
+    f = read_net(d / "bent").f.copy()
+    m, n = f.shape[:2]
+    f[..., 2] += 0.05 * _widths(f) * np.outer(np.sin(np.linspace(0.0, 3.0, m)),
+                                               np.linspace(0.0, 1.0, n) ** 2)
+    return f
+
+
+def _on_polyline(X, Y):
+    """Largest distance of the 2-D points X from the polyline Y."""
+    def lift(Z):
+        return np.c_[Z, np.zeros(len(Z))]
+    _, foot = polyline_foot(lift(Y), lift(X))
+    return float(np.linalg.norm(foot - lift(X), axis=1).max())
+
+
+def test_the_shared_outline_fit_gives_each_strip_its_rulings_on_one_outline(bent):
+    """fit_template, variant shared outline, from the net's strips: every strip an exact
+    bending of its own development, whose vertices lie on the first development's outline
+    (the cut every copy shares) and whose end edges are the first's; rulings not all at the
+    same places; neighbouring rulings within 20°; ends on the edge rows; close to the net."""
+    f = _warped(bent)
+    cols = [0, 1, 2, 3]
+    P, Q = (np.moveaxis(f[:, [c + k for c in cols]], 1, 0) for k in (0, 1))
+    per = planarize_strips(f, cols)
+    A0, B0 = np.stack([s.A for s in per]), np.stack([s.B for s in per])
+    fit = fit_template(f, cols, A0, B0, variant="shared-outline")
+    width = _widths(f)
+    assert fit.status == "converged" and fit.variant == "shared-outline"
+    D = fit.developments
+    assert D.shape == (4, f.shape[0], 2, 2)
+    spread = max(np.abs(D[:, :, j, 1] - D[:1, :, j, 1]).max() for j in (0, 1))
+    assert spread > 1e-4 * width                      # each its own rulings
+    for s, (A, B) in enumerate(zip(fit.A, fit.B, strict=True)):
+        assert planarity_defect(A, B).max() <= 1e-9
+        d = develop_strip(A, B)
+        assert align(d.A, d.B, D[s, :, 0], D[s, :, 1]).error <= 1e-6 * width   # its bending
+        for j in (0, 1):
+            assert _on_polyline(D[s, :, j], D[0, :, j]) <= 2e-3 * width     # chord sag
+            assert np.allclose(D[s, [0, -1], j], D[0, [0, -1], j], atol=1e-8 * width)
+        assert ruling_angles(A, B).max() <= 20.0 + 1e-6
+        for X, g in ((A, P[s]), (B, Q[s])):
+            _, _, t = closest_on_polylines(X[None, [0, -1]], g[None])
+            assert np.allclose(t[0], [0.0, f.shape[0] - 1.0], atol=1e-6)
+        assert deviation(A, B, P[s], Q[s]) <= 0.02 * width
+
+
+def test_a_template_worse_than_the_strips_on_their_own_is_refused(bent):
+    """template_strips keeps the strips on their own (None) when the best template deviates
+    from the net beyond the per-strip strips by more than the margin, and says by how much;
+    within the margin it gives the template."""
+    f = _warped(bent)
+    strips = planarize_strips(f, [0, 1, 2])
+    fitted, record = template_strips(f, strips, "mm", margin=-1.0)
+    assert fitted is None
+    assert "deviates from the net by" in record["rejected"] and record["tried"]
+    best = min(t["deviation"] for t in record["tried"])
+    assert best > record["per_strip_deviation"] - 1.0
+    fitted, record = template_strips(f, strips, "mm", margin=1.0)
+    assert fitted is not None and "rejected" not in record
+    assert record["variant"] in VARIANTS
+
+
+def test_the_artifact_takes_both_variants_and_refuses_others(bent):
+    """A strips artifact with a shared-outline template reads back; an unknown variant is
+    refused on write (schema)."""
+    import dataclasses
+
+    from dgpc_cli.errors import DgpcError
+    from dgpc_cli.io.atomic import write_files
+    from dgpc_cli.io.strips import strips_files
+
+    if not (bent / "s.json").exists():
+        dgpc("planarize-strips", bent / "bent", "-o", bent / "s")
+    art = read_strips(bent / "s")
+    outline = dataclasses.replace(art, template={**art.template, "variant": "shared-outline"})
+    write_files(strips_files(bent / "so", outline), force=True)
+    assert read_strips(bent / "so").template["variant"] == "shared-outline"
+    bogus = dataclasses.replace(art, template={**art.template, "variant": "per-vertex"})
+    with pytest.raises((DgpcError, ValueError)):
+        strips_files(bent / "sb", bogus)

@@ -17,6 +17,7 @@ from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.strips import StripsArtifact, strips_files
 from dgpc_cli.stages.planarize import (
     FLAT_ANGLE,
+    MAX_RULING_TURN,
     POLISH_ABOVE,
     RULING_FAIRNESS,
     SEAM_WEIGHT,
@@ -71,12 +72,16 @@ def _outline(net, json_path):
               help="Template fit: weight of the rulings' smoothness (second differences of the "
                    "ruling vectors): higher keeps neighbouring score lines closer to parallel, "
                    "lower lets the strips follow the net more closely.")
+@click.option("--max-ruling-turn", type=FiniteFloat(min=1, max=89), default=MAX_RULING_TURN,
+              show_default=True,
+              help="Template fit: largest angle in degrees between neighbouring rulings (score "
+                   "lines); a larger angle lets the strips follow the net more closely.")
 @output_opt
 @force_opt
 @format_opt
 @click.pass_context
 def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, seam_weight,
-                         ruling_fairness, output, force, fmt):
+                         ruling_fairness, max_ruling_turn, output, force, fmt):
     """Turn the geodesic strips of the net STEM into discrete developable strips (paper §6.2.4).
 
     Rulings follow the cross products N × N1 of neighbouring normals (averaged across flat
@@ -102,16 +107,20 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
     reason = "--per-strip" if per_strip else template_qualifies(net.f_mm, columns)
     with progressbar(ctx, len(columns), "planarize strips") as bar:
         strips = planarize_strips(net.f_mm, columns, flat_angle=flat_angle, progress=bar.update)
-    template = None
+    template = fallback = None
     if reason is None:
         log.info("planarize-strips: one template for all strips (the net is isometric to a "
                  "surface of revolution with equal strip widths)")
-        fitted, template = template_strips(net.f_mm, strips, net.units,
-                                           seam_weight=seam_weight,
-                                           ruling_fairness=ruling_fairness)
+        fitted, record = template_strips(net.f_mm, strips, net.units,
+                                         seam_weight=seam_weight,
+                                         ruling_fairness=ruling_fairness,
+                                         max_ruling_turn=max_ruling_turn)
         if fitted is None:
-            log.warning("planarize-strips: every strip on its own, no shared template: every "
-                        "template fit crossed its rulings (folded quads)")
+            log.warning("planarize-strips: every strip on its own, no shared template: %s",
+                        record["rejected"])
+            fallback = record
+        else:
+            template = record
         strips = fitted or strips
     elif not per_strip:
         log.warning("planarize-strips: every strip on its own, no shared template: the net %s",
@@ -134,7 +143,9 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
         parameters={"strips": [columns[0], columns[-1]], "flat_angle": flat_angle,
                     "polish_above": POLISH_ABOVE, "trim": trim,
                     "method": "per-strip" if template is None else "template",
-                    "seam_weight": seam_weight, "ruling_fairness": ruling_fairness},
+                    "seam_weight": seam_weight, "ruling_fairness": ruling_fairness,
+                    "max_ruling_turn": max_ruling_turn,
+                    **({"template_rejected": fallback} if fallback else {})},
         template=template,
         inputs={"net": file_input(json_path, out_json.resolve().parent)},
         metrics={**strips_metrics(strips),

@@ -24,12 +24,13 @@ from dgpc_cli.strips.rulings import (
     strip_normals,
 )
 from dgpc_cli.strips.template import (
+    MAX_RULING_TURN,
     RULING_FAIRNESS,
     SEAM_WEIGHT,
     TemplateFit,
+    TemplateProblem,
     bend_template,
     closest_on_polylines,
-    fit_template,
     start_template,
 )
 from dgpc_cli.strips.trim import strip_points, trim_strip
@@ -46,6 +47,13 @@ POLISH_ABOVE = 1e-10
 CONGRUENT = 1e-9
 #: Factors of the ruling fairness tried in turn until a template fit keeps its rulings in order.
 FAIRNESS_STEPS = (1.0, 10.0, 100.0)
+#: The template fits tried (variant, start), the best kept: each variant from the start that
+#: suited it best on the pipelines' nets (shared outline from the per-strip strips, shared
+#: vertices from the net's own strips).
+TEMPLATE_FITS = (("shared-outline", "per-strip"), ("shared-vertices", "net"))
+#: A template whose largest deviation from the net exceeds the per-strip strips' by more than
+#: this share of the width is not used (the strips stay on their own, with a warning).
+TEMPLATE_MARGIN = 0.005
 #: ``--trim`` drops parts shorter than this many quads along the strip.
 MIN_PART_QUADS = 1.0
 
@@ -219,19 +227,31 @@ def _congruent(A: np.ndarray, B: np.ndarray, width: float) -> bool:
     return bool(np.abs(lengths(A, B) - lengths(A[:1], B[:1])).max() <= CONGRUENT * width)
 
 
+def _worst_deviation(A, B, P, Q) -> float:
+    """The largest deviation of the strips ``A, B`` from the net strips ``P, Q (S, m, 3)``
+    over their widths."""
+    return max(deviation(a, b, p, q) / strip_width(p, q)
+               for a, b, p, q in zip(A, B, P, Q, strict=True))
+
+
 def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
-                    seam_weight: float = SEAM_WEIGHT, ruling_fairness: float = RULING_FAIRNESS
-                    ) -> tuple[list[PlanarStrip] | None, dict | None]:
+                    seam_weight: float = SEAM_WEIGHT, ruling_fairness: float = RULING_FAIRNESS,
+                    max_ruling_turn: float = MAX_RULING_TURN, margin: float = TEMPLATE_MARGIN
+                    ) -> tuple[list[PlanarStrip] | None, dict]:
     """The planar strips ``strips`` (per-strip, of the net ``f`` in mm) replaced by exact
     bendings of one template (:mod:`dgpc_cli.strips.template`), and the template's record
-    (variant, start, fit outcome, its 2-D boundaries in ``units``).
+    (variant, start, fit outcome, its 2-D boundaries in ``units``, the deviations tried).
 
-    The fit starts once from the per-strip strips and once from the net's own strips (rulings
-    on the v-edges); the fit that stays closer to the net (largest deviation) is kept. Strips
-    that are congruent already (a surface of revolution) are rebuilt from the first one's
-    development without a fit (status ``congruent``). Fits whose template folds (rulings
-    that cross) are refused; the ruling fairness is raised tenfold until one keeps them in
-    order (:data:`FAIRNESS_STEPS`), else ``(None, None)``: no template.
+    The fits of :data:`TEMPLATE_FITS` (variants shared vertices and shared outline, starts the
+    per-strip strips and the net's own strips with rulings on the v-edges) share one
+    :class:`~dgpc_cli.strips.template.TemplateProblem` (one setup); the fit that stays
+    closer to the net (largest deviation) is kept. Strips that are congruent already (a
+    surface of revolution) are rebuilt from the first one's development without a fit
+    (status ``congruent``). Fits whose template folds (rulings that cross) are refused; the
+    ruling fairness is raised tenfold until one keeps them in order (:data:`FAIRNESS_STEPS`).
+    Without such a fit, or when the best one deviates from the net by more than ``margin`` of
+    the width beyond the per-strip strips, returns ``(None, record)``, the record's
+    ``rejected`` saying why.
     """
     f = np.asarray(f, dtype=float)
     columns = [s.v for s in strips]
@@ -239,7 +259,8 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
     P, Q = np.moveaxis(f[:, cols], 1, 0), np.moveaxis(f[:, cols + 1], 1, 0)
     starts = {"per-strip": (np.stack([s.A for s in strips]), np.stack([s.B for s in strips])),
               "net": (P, Q)}
-    best = None
+    per_strip = _worst_deviation(*starts["per-strip"], P, Q)
+    best, tried = None, []
     if _congruent(*starts["per-strip"], min(s.width for s in strips)):
         # a surface of revolution: the per-strip strips are one template already
         A0, B0 = starts["per-strip"]
@@ -250,22 +271,35 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
         best = (0.0, "per-strip", fit, 0.0)
         starts = {}
     for factor in FAIRNESS_STEPS if starts else ():
-        for name, (A0, B0) in starts.items():
-            fit = fit_template(f, columns, A0, B0, seam_weight=seam_weight,
-                               ruling_fairness=ruling_fairness * factor)
-            worst = max(deviation(a, b, p, q) / strip_width(p, q)
-                        for a, b, p, q in zip(fit.A, fit.B, P, Q, strict=True))
-            ordered = _template_ordered(fit.template)
-            log.debug("template fit from the %s start, ruling fairness %g: largest deviation "
-                      "%.3g of the width, rulings %s", name, ruling_fairness * factor, worst,
-                      "in order" if ordered else "crossing")
+        shared = TemplateProblem.build(f, columns, seam_weight=seam_weight,
+                                       ruling_fairness=ruling_fairness * factor,
+                                       max_ruling_turn=max_ruling_turn)
+        problems = {v: shared.with_variant(v) for v in {v for v, _ in TEMPLATE_FITS}}
+        for (variant, name), (A0, B0) in ((k, starts[k[1]]) for k in TEMPLATE_FITS):
+            fit = problems[variant].fit(A0, B0)
+            worst = _worst_deviation(fit.A, fit.B, P, Q)
+            ordered = all(_template_ordered(t) for t in (
+                fit.developments if fit.developments is not None else [fit.template]))
+            tried.append({"variant": fit.variant, "start": name,
+                          "ruling_fairness": ruling_fairness * factor,
+                          "deviation": worst, "rulings_ordered": ordered})
+            log.debug("template fit (%s) from the %s start, ruling fairness %g: largest "
+                      "deviation %.3g of the width, rulings %s", fit.variant, name,
+                      ruling_fairness * factor, worst, "in order" if ordered else "crossing")
             if ordered and (best is None or worst < best[0]):
                 best = (worst, name, fit, ruling_fairness * factor)
         if best is not None:
             break
+    record = {"per_strip_deviation": per_strip, "tried": tried}
     if best is None:
-        return None, None
-    _, start, fit, fairness = best
+        return None, {**record, "rejected": "every template fit crossed its rulings (folded "
+                      "quads)"}
+    worst, start, fit, fairness = best
+    if worst > per_strip + margin:
+        return None, {**record, "rejected": (
+            f"the best template deviates from the net by {100 * worst:.2f} % of the strip "
+            f"width, the strips on their own by {100 * per_strip:.2f} % (more than "
+            f"{100 * margin:g} % apart)")}
     _, _, sA = closest_on_polylines(fit.A, P)
     _, _, sB = closest_on_polylines(fit.B, Q)
     out = []
@@ -277,9 +311,10 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
             deviation=deviation(a, b, P[i], Q[i]) / strip.width,
             rulings_ordered=True))
     record = {"variant": fit.variant, "start": start, "ruling_fairness": fairness,
-              "status": fit.status,
-              "iterations": fit.iterations, "A": from_mm(fit.template[:, 0], units),
-              "B": from_mm(fit.template[:, 1], units)}
+              "max_ruling_turn": max_ruling_turn,
+              "status": fit.status, "iterations": fit.iterations,
+              "A": from_mm(fit.template[:, 0], units), "B": from_mm(fit.template[:, 1], units),
+              **record}
     return out, record
 
 

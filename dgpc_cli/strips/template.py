@@ -9,23 +9,37 @@ place. The fit (:func:`fit_template`) solves, by guided projection, for one flat
 * hard: every strip quad congruent to the template quad (edges, ruling and both diagonals,
   :func:`~dgpc_cli.core.constraints.template.template_isometry`), planar, its boundary vertices
   on their net geodesic (no move across it), the end rulings on the net's end v-edges (the parts
-  cover the design edge to edge), the template's rigid motions fixed;
+  cover the design edge to edge), the template's rigid motions fixed, its quads not folded and
+  neighbouring rulings within 20° (:func:`~dgpc_cli.core.constraints.template.ruling_turn`);
 * soft: the strips' quads (3 × 3 samples of each) close to the net (point-to-plane, §5.1),
-  and optionally the seams: neighbouring strips' boundaries on the same geodesic;
-* regularizers: fairness of the ruling vectors and of the vertices' slides along the geodesics.
+  the boundary vertices on their geodesic, and optionally the seams: neighbouring strips'
+  boundaries on the same geodesic;
+* regularizers: fairness of the ruling vectors and of the vertices' slides along the geodesics,
+  and a proximal term on the slides within a round.
 
-It starts from the per-strip planar strips (ends on the end v-edges) and a template averaged
-from their developments. Afterwards every strip is rebuilt from the template quad by quad
-(:func:`bend_template`): quad 0 placed by Kabsch onto the fitted quad, each next quad turned
-about the ruling it shares with the previous one to its best angle. The rebuilt strips are exact
-isometric bendings of the template: congruent and planar to round-off.
+One :class:`TemplateProblem` holds what every start shares (scaled net, reference surface,
+samples, end edges, weights, the solver's workspace). A fit starts from planar strips (the
+per-strip ones, ends on the end v-edges, or the net's own) and a template averaged from their
+developments, and runs a few rounds of guided projection, the frames of the soft terms taken
+anew and their weights lowered tenfold each round (a penalty method whose last round ends on
+the hard terms close to the best fit; one projection onto the hard terms alone, the least
+change, if it did not reach the tolerance). Afterwards every strip is rebuilt from the
+template quad by quad (:func:`bend_template`): quad 0 placed by Kabsch onto the fitted quad,
+each next quad turned about the ruling it shares with the previous one to its best angle. The
+rebuilt strips are exact isometric bendings of the template: congruent and planar to
+round-off.
 
 Variant ``shared-vertices``: the template's vertices, hence its rulings (score lines), are the
-same on every strip.
+same on every strip. Variant ``shared-outline``: every strip has its own development (its own
+score lines) whose boundary vertices lie on two outline curves shared by all strips (Chebyshev
+polynomials of low degree in the template's frame), with the end edges shared: one outline to
+cut, each copy scored for its own bending. Its strips' polylines differ by the curves' sag
+between neighbouring vertices (hundredths of a millimetre on the pipelines' walls).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 from dataclasses import dataclass
 
@@ -34,13 +48,16 @@ import numpy as np
 from dgpc_cli.core.constraints.planarity import lateral, planarity, slide_fairness
 from dgpc_cli.core.constraints.template import (
     StripSetLayout,
+    chebyshev_basis,
     plane_offsets,
     ruling_fairness,
+    ruling_turn,
     seam,
     strip_quad_samples,
     template_gauge,
     template_isometry,
     template_order,
+    template_outline,
 )
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.core.solver import Schedule, Term, guided_projection
@@ -52,14 +69,25 @@ from dgpc_cli.strips.quality import patch_mesh
 log = logging.getLogger(__name__)
 
 #: The variants of the fit (see the module).
-VARIANTS = ("shared-vertices",)
-#: Weight schedule of the closeness of the strips to the net (the hard terms have weight 1).
-CLOSENESS_WEIGHT = Schedule.constant(1e-3)
-#: Weight of the boundary vertices' distance across their net geodesic.
-ACROSS_WEIGHT = Schedule.constant(1e-3)
-#: Weights of the fairness of the ruling vectors and of the slides along the geodesics.
+VARIANTS = ("shared-vertices", "shared-outline")
+#: The outline polynomials' y range is the start template's times this (room to move).
+OUTLINE_MARGIN = 1.1
+#: Degree of the Chebyshev polynomials of the shared outline's two curves (at most m − 1).
+OUTLINE_DEGREE = 6
+#: Weights of the soft terms and regularizers in the first round (the hard terms have weight
+#: 1): closeness of the strips to the net, the boundary vertices' distance across their net
+#: geodesic, their slide along it within a round (a proximal term: sliding is free for the
+#: closeness), the fairness of the slides.
+WEIGHTS = {"closeness": 1e-3, "across": 1e-3, "slide": 1e-5, "slide_fairness": 1e-8,
+           "max_ruling_turn": 20.0}
+#: The default largest turn between neighbouring rulings, degrees.
+MAX_RULING_TURN = WEIGHTS["max_ruling_turn"]
+#: (``max_ruling_turn``: not a weight, the largest angle in degrees between neighbouring
+#: rulings, a hard bound: :func:`~dgpc_cli.core.constraints.template.ruling_turn`.)
+#: Weight of the fairness of the ruling vectors.
 RULING_FAIRNESS = 1e-7
-SLIDE_FAIRNESS = Schedule.constant(1e-8)
+#: Factors of the soft weights, one per round.
+ROUND_FACTORS = (1.0, 0.1, 0.01, 1e-3)
 #: The template's boundary steps and quad turns stay above this fraction of their mean (no
 #: folded quad, no crossing rulings).
 ORDER_MARGIN = 0.2
@@ -68,7 +96,9 @@ SEAM_WEIGHT = 0.0
 #: Tolerance (hard residual at mean edge length 1) and iteration limit of the fit.
 FIT_TOL = 1e-10
 FIT_ROUNDS = 4
-ROUND_MAX_ITER = 40
+ROUND_MAX_ITER = 30
+#: Rounds stop once their objective fell by less than 0.1 % over this many iterations.
+ROUND_STAGNATION = 10
 PROJECTION_MAX_ITER = 30
 
 
@@ -76,7 +106,8 @@ PROJECTION_MAX_ITER = 30
 class TemplateFit:
     """The fitted strips ``A, B (S, m, 3)`` (rebuilt from the template: exact bendings), the
     template ``(m, 2, 2)`` (``[u, 0] = a_u``, ``[u, 1] = b_u``), the variant and the solver's
-    outcome."""
+    outcome; with a shared outline ``developments (S, m, 2, 2)``, every strip's own (its
+    vertices on the template's outline), the template being the first one's."""
 
     A: np.ndarray
     B: np.ndarray
@@ -85,6 +116,7 @@ class TemplateFit:
     status: str
     iterations: int
     R: float
+    developments: np.ndarray | None = None
 
 
 def closest_on_polylines(X: np.ndarray, P: np.ndarray) -> tuple[np.ndarray, np.ndarray,
@@ -105,24 +137,34 @@ def closest_on_polylines(X: np.ndarray, P: np.ndarray) -> tuple[np.ndarray, np.n
     return c, tangent, seg + np.take_along_axis(t, pick, 2)[..., 0]
 
 
+def start_developments(A: np.ndarray, B: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The developments ``(S, m, 2, 2)`` of planar strips ``A, B (S, m, 3)`` aligned onto
+    their mean (Kabsch), and that mean, the start template ``(m, 2, 2)``: placed with ``a_0`` at
+    the origin and ``b_0`` on the +x axis (the gauge of the fit)."""
+    devs = [develop_strip(a, b) for a, b in zip(A, B, strict=True)]
+    ref = np.concatenate([devs[0].A, devs[0].B])
+    aligned = []
+    for d in devs:
+        X = np.concatenate([d.A, d.B])
+        R, t = kabsch(X, ref, allow_reflection=False)
+        aligned.append(X @ R.T + t)
+    aligned = np.stack(aligned)                                          # (S, 2m, 2)
+    mean = aligned.mean(axis=0)
+    m = A.shape[1]
+    origin = mean[0]
+    ang = np.arctan2(*(mean[m] - origin)[::-1])
+    c, s = np.cos(-ang), np.sin(-ang)
+    rot = np.array([[c, -s], [s, c]])
+    placed = (aligned - origin) @ rot.T
+    devs2 = np.stack([placed[:, :m], placed[:, m:]], axis=2)             # (S, m, 2, 2)
+    return devs2, devs2.mean(axis=0)
+
+
 def start_template(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     """A template ``(m, 2, 2)`` from planar strips ``A, B (S, m, 3)``: their developments
     aligned onto the first one's (Kabsch) and averaged, placed with ``a_0`` at the origin and
     ``b_0`` on the +x axis (the gauge of the fit)."""
-    devs = [develop_strip(a, b) for a, b in zip(A, B, strict=True)]
-    ref = np.concatenate([devs[0].A, devs[0].B])
-    acc = np.zeros_like(ref)
-    for d in devs:
-        X = np.concatenate([d.A, d.B])
-        R, t = kabsch(X, ref, allow_reflection=False)
-        acc += X @ R.T + t
-    mean = acc / len(devs)
-    m = A.shape[1]
-    a, b = mean[:m] - mean[0], mean[m:] - mean[0]
-    ang = np.arctan2(b[0, 1], b[0, 0])
-    c, s = np.cos(-ang), np.sin(-ang)
-    rot = np.array([[c, -s], [s, c]])
-    return np.stack([a @ rot.T, b @ rot.T], axis=1)
+    return start_developments(A, B)[1]
 
 
 def _rotate_about(X, origin, axis, angle):
@@ -137,29 +179,30 @@ def _rotate_about(X, origin, axis, angle):
 
 def bend_template(template: np.ndarray, A: np.ndarray, B: np.ndarray) -> tuple[np.ndarray,
                                                                                 np.ndarray]:
-    """Exact isometric bendings of the ``template (m, 2, 2)`` fitted to the strips ``A, B
-    (S, m, 3)``: quad 0 by Kabsch onto the strip's quad 0, then every next template quad
-    attached to the ruling already placed, flat, and turned about it to the angle that brings
-    its two far vertices closest to the strip's (least squares). Congruent and planar quads to
-    round-off."""
+    """Exact isometric bendings of the ``template (m, 2, 2)`` (or of one development per strip,
+    ``(S, m, 2, 2)``) fitted to the strips ``A, B (S, m, 3)``: quad 0 by Kabsch onto the
+    strip's quad 0, then every next template quad attached to the ruling already placed, flat,
+    and turned about it to the angle that brings its two far vertices closest to the strip's
+    (least squares). Congruent and planar quads to round-off."""
     S, m = A.shape[:2]
-    T = np.concatenate([template, np.zeros((m, 2, 1))], axis=-1)          # (m, 2, 3)
+    template = np.broadcast_to(template, (S, m, 2, 2))
+    T = np.concatenate([template, np.zeros((S, m, 2, 1))], axis=-1)       # (S, m, 2, 3)
     outA, outB = np.empty_like(A), np.empty_like(B)
-    X0 = np.concatenate([T[:2, 0], T[:2, 1]])                              # (4, 3)
     motions = []
     for s in range(S):
+        X0 = np.concatenate([T[s, :2, 0], T[s, :2, 1]])                   # (4, 3)
         Y0 = np.concatenate([A[s, :2], B[s, :2]])
         motions.append(_kabsch3(X0, Y0))
     Rm = np.stack([r for r, _ in motions])                                 # (S, 3, 3)
     tm = np.stack([t for _, t in motions])                                 # (S, 3)
 
-    def place(points):                                                     # (k, 3) -> (S, k, 3)
-        return np.einsum("sij,kj->ski", Rm, points) + tm[:, None]
+    def place(points):                                             # (S, k, 3) -> (S, k, 3)
+        return np.einsum("sij,skj->ski", Rm, points) + tm[:, None]
 
-    first = place(T[:2].reshape(-1, 3)).reshape(S, 2, 2, 3)
+    first = place(T[:, :2].reshape(S, -1, 3)).reshape(S, 2, 2, 3)
     outA[:, :2], outB[:, :2] = first[:, :, 0], first[:, :, 1]
     for u in range(1, m - 1):
-        flat = place(T[u + 1])                                             # (S, 2, 3)
+        flat = place(T[:, u + 1])                                          # (S, 2, 3)
         origin = outA[:, u]
         axis = unit(outB[:, u] - origin)
         x = flat - origin[:, None]
@@ -225,10 +268,12 @@ def _order_bounds(T: np.ndarray):
     return e, sign, step, ORDER_MARGIN * float(np.mean(np.abs(cross)))
 
 
-def _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight, ruling_weight):
+def _soft_terms(x, setup: TemplateProblem, factor: float):
     """The soft terms and regularizers, their frames (closest points on the geodesics, tangent
-    planes of the net at the samples' feet) taken at ``x``: held fixed for one round."""
-    m, S = layout.m, layout.S
+    planes of the net at the samples' feet) taken at ``x``: held fixed for one round. The soft
+    weights are scaled by ``factor`` (the rounds lower it: a penalty method whose last round
+    is close to the hard constraints)."""
+    layout, P, Q, m, S = setup.layout, setup.P, setup.Q, setup.layout.m, setup.layout.S
     A, B = layout.strips(x)
     cA, tA, bA = _frames(P, Q, A, False)
     cB, tB, bB = _frames(P, Q, B, True)
@@ -238,79 +283,169 @@ def _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight, rul
 
     c, t, across = grid(cA, cB), grid(tA, tB), grid(bA, bB)
     p = x[: 3 * layout.n_vertices].reshape(-1, 3)
-    feet, planes = reference.closest(np.einsum("kc,kcj->kj", samples[1], p[samples[0]]))
+    samples = setup.samples
+    feet, planes = setup.reference.closest(np.einsum("kc,kcj->kj", samples[1], p[samples[0]]))
+    w = setup.weights
+
+    def const(v):
+        return Schedule.constant(v * factor)
+
     terms = [
         Term("closeness", lambda x: plane_offsets(x, layout, samples, feet, planes),
-             CLOSENESS_WEIGHT, False),
+             const(w["closeness"]), False),
         Term("across", lambda x: lateral(x, layout, c.reshape(-1, 3), across.reshape(-1, 3)),
-             ACROSS_WEIGHT, False),
+             const(w["across"]), False),
+        Term("slide", lambda x: lateral(x, layout, c.reshape(-1, 3), t.reshape(-1, 3)),
+             const(w["slide"]), False, True),
         Term("ruling_fairness", lambda x: ruling_fairness(x, layout),
-             Schedule.constant(ruling_weight), False, True),
-
-        Term("slide_fairness", lambda x: slide_fairness(x, layout, c, t), SLIDE_FAIRNESS,
-             False, True)]
-    if seam_dirs is not None:
-        terms.append(Term("seam", lambda x: seam(x, layout, seam_dirs),
-                          Schedule.constant(seam_weight), False))
+             const(w["ruling_fairness"]), False, True),
+        Term("slide_fairness", lambda x: slide_fairness(x, layout, c, t),
+             const(w["slide_fairness"]), False, True)]
+    if setup.seam_dirs is not None:
+        terms.append(Term("seam", lambda x: seam(x, layout, setup.seam_dirs),
+                          const(w["seam"]), False))
     return terms
+
+
+@dataclass
+class TemplateProblem:
+    """What every start of a template fit shares (see :func:`fit_template`): the net strips
+    ``P, Q (S, m, 3)`` scaled to mean edge length 1 about ``center`` (``scale``), the layout,
+    the net as a reference surface and the sample points of the closeness, the end v-edges,
+    the seam directions and the weights; the solver's workspace (one pattern for every start
+    and round: one symbolic factorization)."""
+
+    layout: StripSetLayout
+    P: np.ndarray
+    Q: np.ndarray
+    center: np.ndarray
+    scale: float
+    reference: ReferenceSurface
+    samples: tuple
+    end_c: np.ndarray
+    end_t: np.ndarray
+    seam_dirs: np.ndarray | None
+    weights: dict
+    variant: str = "shared-vertices"
+    workspace: object = None
+
+    def with_variant(self, variant: str) -> TemplateProblem:
+        """The same problem for the other ``variant`` (its own layout and workspace)."""
+        degree = min(OUTLINE_DEGREE, self.layout.m - 1) if variant == "shared-outline" else 0
+        return dataclasses.replace(self, variant=variant, workspace=None,
+                                   layout=StripSetLayout(self.layout.m, self.layout.S, degree))
+
+    @classmethod
+    def build(cls, f: np.ndarray, columns, *, seam_weight: float = SEAM_WEIGHT,
+              ruling_fairness: float = RULING_FAIRNESS, variant: str = "shared-vertices",
+              **weights) -> TemplateProblem:
+        """The problem of the strips ``columns`` of the net ``f (m, n, 3)`` for ``variant``;
+        ``weights`` override :data:`WEIGHTS` by name."""
+        f = np.asarray(f, dtype=float)
+        columns = np.asarray(columns, dtype=int)
+        P, Q = np.moveaxis(f[:, columns], 1, 0), np.moveaxis(f[:, columns + 1], 1, 0)
+        S, m = P.shape[:2]
+        center = f.reshape(-1, 3).mean(axis=0)
+        edges = np.concatenate([np.linalg.norm(np.diff(P, axis=1), axis=-1).ravel(),
+                                np.linalg.norm(Q - P, axis=-1).ravel()])
+        scale = 1.0 / float(np.mean(edges))
+        P, Q = (P - center) * scale, (Q - center) * scale
+        layout = StripSetLayout(m, S)
+        # the end rulings: the net's end v-edges (no slide along the geodesic there)
+        end_c = np.stack([np.stack([P[:, r], Q[:, r]], axis=1).reshape(2 * S, 3)
+                          for r in (0, -1)])
+        tP, tQ = unit(np.gradient(P, axis=1)), unit(np.gradient(Q, axis=1))
+        end_t = np.stack([np.stack([tP[:, r], tQ[:, r]], axis=1).reshape(2 * S, 3)
+                          for r in (0, -1)])
+        w = {**WEIGHTS, "seam": seam_weight, "ruling_fairness": ruling_fairness, **weights}
+        problem = cls(layout=layout, P=P, Q=Q, center=center, scale=scale,
+                      reference=_net_surface((f - center) * scale, columns),
+                      samples=strip_quad_samples(layout), end_c=end_c, end_t=end_t,
+                      seam_dirs=_seam_directions(P, Q) if seam_weight > 0 and S > 1 else None,
+                      weights=w)
+        return problem if variant == "shared-vertices" else problem.with_variant(variant)
+
+    def hard_terms(self, order, outline, tan_max) -> list[Term]:
+        """The hard terms: ``order`` the bounds of :func:`template_order`, ``outline`` the
+        ``(y0, h)`` of :func:`template_outline` (None for shared vertices), ``tan_max`` the
+        tangent of the largest ruling turn."""
+        layout, ends = self.layout, np.r_[self.layout.vid[0], self.layout.vid[-1]]
+        end_c, end_t = self.end_c.reshape(-1, 3), self.end_t.reshape(-1, 3)
+        one = Schedule.constant(1.0)
+        return [
+            Term("template_isometry", lambda x: template_isometry(x, layout), one),
+            Term("planarity", lambda x: planarity(x, layout), one),
+            Term("ends", lambda x: lateral(x, layout, end_c, end_t, ends), one),
+            Term("template_gauge", lambda x: template_gauge(x, layout), one),
+            Term("template_order", lambda x: template_order(x, layout, *order), one),
+            Term("ruling_turn", lambda x: ruling_turn(x, layout, tan_max), one)] + (
+            [Term("template_outline", lambda x: template_outline(x, layout, *outline), one)]
+            if outline is not None else [])
+
+    def fit(self, A0: np.ndarray, B0: np.ndarray, *, rounds: int = FIT_ROUNDS) -> TemplateFit:
+        """One fit from the strips ``A0, B0 (S, m, 3)`` (unscaled)."""
+        layout = self.layout
+        A, B = (A0 - self.center) * self.scale, (B0 - self.center) * self.scale
+        devs, T0 = start_developments(A, B)
+        outline = None
+        if layout.outline_degree > 0:
+            y = T0[..., 1]
+            outline = (0.5 * float(y.max() + y.min()), OUTLINE_MARGIN * 0.5 * float(np.ptp(y)))
+            V, _ = chebyshev_basis((devs[..., 1].reshape(-1) - outline[0]) / outline[1],
+                                   layout.outline_degree)
+            side = np.tile([0, 1], devs.shape[0] * devs.shape[1])
+            coefficients = np.stack([np.linalg.lstsq(V[side == j], devs[..., 0].reshape(-1)[
+                side == j], rcond=None)[0] for j in (0, 1)])
+            x = layout.pack(A, B, devs, coefficients)
+        else:
+            x = layout.pack(A, B, T0)
+        order = _order_bounds(T0)
+        x[layout.slack_offset:layout.turn_offset] = np.sqrt(np.maximum(
+            template_order(x, layout, *order)[0], 0.0))
+        tan_max = np.tan(np.radians(self.weights["max_ruling_turn"]))
+        x[layout.turn_offset:] = np.sqrt(np.maximum(ruling_turn(x, layout, tan_max)[0], 0.0))
+        hard = self.hard_terms(order, outline, tan_max)
+        iterations, result = 0, None
+        factors = ROUND_FACTORS[:rounds]
+        for k, factor in enumerate(factors):
+            last = k == len(factors) - 1
+            fitted = guided_projection(x, hard + _soft_terms(x, self, factor), tol=FIT_TOL,
+                                       max_iter=PROJECTION_MAX_ITER if last else ROUND_MAX_ITER,
+                                       stagnation_window=ROUND_STAGNATION,
+                                       workspace=self.workspace)
+            x, self.workspace = fitted.x, fitted.workspace
+            iterations += fitted.iterations
+            result = fitted
+            log.debug("template fit round %d (soft ×%g): %s, R %.3g", k, factor,
+                      fitted.status, fitted.R)
+        if result.R > FIT_TOL:
+            result = guided_projection(x, hard, tol=FIT_TOL, max_iter=PROJECTION_MAX_ITER)
+            iterations += result.iterations
+        template = layout.template(result.x)
+        A1, B1 = bend_template(template, *layout.strips(result.x))
+        s, c = self.scale, self.center
+        devs = template if layout.outline_degree > 0 else None
+        return TemplateFit(A=A1 / s + c, B=B1 / s + c,
+                           template=(template if devs is None else devs[0]) / s,
+                           variant=self.variant, status=result.status,
+                           iterations=iterations, R=result.R / s,
+                           developments=None if devs is None else devs / s)
 
 
 def fit_template(f: np.ndarray, columns: list[int], A0: np.ndarray, B0: np.ndarray, *,
                  seam_weight: float = SEAM_WEIGHT, ruling_fairness: float = RULING_FAIRNESS,
-                 rounds: int = FIT_ROUNDS) -> TemplateFit:
+                 variant: str = "shared-vertices", rounds: int = FIT_ROUNDS) -> TemplateFit:
     """Fit one template to the strips ``columns`` of the net ``f (m, n, 3)``, starting from the
     planar strips ``A0, B0 (S, m, 3)`` (see the module). Returns the rebuilt strips.
 
     The soft terms' frames follow the strips: ``rounds`` guided projections, each with the
-    frames taken where the previous one ended (warm start, the same factorization pattern),
-    then a projection onto the hard terms alone (the least change that satisfies them)."""
-    f = np.asarray(f, dtype=float)
-    columns = np.asarray(columns, dtype=int)
-    P, Q = np.moveaxis(f[:, columns], 1, 0), np.moveaxis(f[:, columns + 1], 1, 0)
-    S, m = P.shape[:2]
-    center = f.reshape(-1, 3).mean(axis=0)
-    edges = np.concatenate([np.linalg.norm(np.diff(A0, axis=1), axis=-1).ravel(),
-                            np.linalg.norm(B0 - A0, axis=-1).ravel()])
-    scale = 1.0 / float(np.mean(edges))
-    P, Q = (P - center) * scale, (Q - center) * scale
-    A, B = (A0 - center) * scale, (B0 - center) * scale
-    layout = StripSetLayout(m, S)
-    T0 = start_template(A, B)
-    x = layout.pack(A, B, T0)
-    order = _order_bounds(T0)
-    x[layout.slack_offset:] = np.sqrt(np.maximum(
-        template_order(x, layout, *order)[0] + x[layout.slack_offset:] ** 2, 0.0))
-    # the end rulings: the net's end v-edges (no slide along the geodesic there)
-    ends = np.r_[layout.vid[0], layout.vid[-1]]
-    end_c = np.stack([np.stack([P[:, r], Q[:, r]], axis=1).reshape(2 * S, 3) for r in (0, -1)])
-    tP, tQ = unit(np.gradient(P, axis=1)), unit(np.gradient(Q, axis=1))
-    end_t = np.stack([np.stack([tP[:, r], tQ[:, r]], axis=1).reshape(2 * S, 3) for r in (0, -1)])
-    hard = [
-        Term("template_isometry", lambda x: template_isometry(x, layout), Schedule.constant(1.0)),
-        Term("planarity", lambda x: planarity(x, layout), Schedule.constant(1.0)),
-        Term("ends", lambda x: lateral(x, layout, end_c.reshape(-1, 3), end_t.reshape(-1, 3),
-                                       ends), Schedule.constant(1.0)),
-        Term("template_gauge", lambda x: template_gauge(x, layout), Schedule.constant(1.0)),
-        Term("template_order", lambda x: template_order(x, layout, *order),
-             Schedule.constant(1.0))]
-    reference = _net_surface((f - center) * scale, columns)
-    samples = strip_quad_samples(layout)
-    seam_dirs = _seam_directions(P, Q) if seam_weight > 0 and S > 1 else None
-    workspace, iterations = None, 0
-    for _ in range(rounds):
-        soft = _soft_terms(x, layout, P, Q, reference, samples, seam_dirs, seam_weight,
-                           ruling_fairness)
-        fitted = guided_projection(x, hard + soft, tol=FIT_TOL, max_iter=ROUND_MAX_ITER,
-                                   workspace=workspace)
-        x, workspace, iterations = fitted.x, fitted.workspace, iterations + fitted.iterations
-    result = guided_projection(x, hard, tol=FIT_TOL, max_iter=PROJECTION_MAX_ITER)
-    template = layout.template(result.x)
-    A1, B1 = bend_template(template, *layout.strips(result.x))
-    log.debug("template fit: %s after %d iterations, R %.3g", result.status,
-              iterations + result.iterations, result.R)
-    return TemplateFit(A=A1 / scale + center, B=B1 / scale + center, template=template / scale,
-                       variant="shared-vertices", status=result.status,
-                       iterations=iterations + result.iterations, R=result.R / scale)
+    frames taken where the previous one ended (warm start, the same factorization pattern)
+    and the soft weights lowered tenfold (:data:`ROUND_FACTORS`), so the last round ends on
+    the hard terms near the best fit; a projection onto the hard terms alone only if it did
+    not reach the tolerance."""
+    problem = TemplateProblem.build(f, columns, seam_weight=seam_weight,
+                                    ruling_fairness=ruling_fairness, variant=variant)
+    return problem.fit(A0, B0, rounds=rounds)
 
 
 def _seam_directions(P, Q):

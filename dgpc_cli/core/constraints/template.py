@@ -20,11 +20,16 @@ Terms of its own (``term(x, layout, ...) -> (phi, J)``, value-independent COO pa
 * ruling fairness: second differences along u of the ruling vectors ``B_u − A_u`` (rulings
   that turn smoothly: score lines that do not zigzag);
 * seam: ``⟨d, B_(s,u) − A_(s+1,u)⟩`` for the directions d across the shared geodesic and along
-  the surface normal: neighbouring strips' boundaries on the same geodesic (no step, no gap).
+  the surface normal: neighbouring strips' boundaries on the same geodesic (no step, no gap);
+* template order and ruling turn (slack form of inequalities): no folded template quad, and
+  neighbouring rulings within an angle;
+* template outline (variant shared outline, one development per strip): every development's
+  boundary vertices on the two shared outline curves, the end edges shared.
 """
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -35,10 +40,18 @@ from dgpc_cli.core.constraints.base import jacobian
 @dataclass(frozen=True)
 class StripSetLayout:
     """Variables of S strips of m rows sharing one template:
-    ``x = [p (3 · m · 2S), n (3 · (m−1) S), t (2 · 2m)]`` (see the module)."""
+    ``x = [p (3 · m · 2S), n (3 · (m−1) S), t (2 · 2m · D), c (2 (d+1)), σ (3 (m−1) D)]``
+    (see the module).
+
+    ``outline_degree`` d = 0: the variant *shared vertices*, one template (D = 1) whose
+    vertices every strip shares. d > 0: the variant *shared outline*, one development per strip
+    (D = S, each in the template's frame) whose boundary vertices lie on the two shared
+    outline curves ``x = Σ_k c_(j,k) T_k(ŷ)`` (Chebyshev polynomials of degree d in the
+    normalized y, :func:`template_outline`): each strip its own rulings on one outline."""
 
     m: int
     S: int
+    outline_degree: int = 0
     vid: np.ndarray = field(init=False, repr=False)
     corners: np.ndarray = field(init=False, repr=False)
     pairs: np.ndarray = field(init=False, repr=False)
@@ -50,14 +63,17 @@ class StripSetLayout:
         a, b = vid[:, 0::2], vid[:, 1::2]                                   # (m, S)
         corners = np.stack([a[:-1], a[1:], b[1:], b[:-1]], axis=-1)        # (m-1, S, 4)
         corners = np.moveaxis(corners, 1, 0).reshape(-1, 4)                 # strip-major
-        # template vertex ids (u, j) -> 2u + j; pairs (3-D ids, template ids) per strip
+        # template vertex ids (d, u, j) -> 2m d + 2u + j (d the development: 0 when shared);
+        # pairs (3-D ids, template ids) per strip
         ta, tb = 2 * np.arange(self.m), 2 * np.arange(self.m) + 1
         t_pairs = np.concatenate([np.stack(p, -1) for p in (
             (ta[:-1], ta[1:]), (tb[:-1], tb[1:]), (ta, tb), (ta[:-1], tb[1:]), (tb[:-1], ta[1:]))])
         p_pairs = np.concatenate([np.stack(p, -1) for p in (
             (a[:-1], a[1:]), (b[:-1], b[1:]), (a, b), (a[:-1], b[1:]), (b[:-1], a[1:]))])
-        pairs = np.concatenate([np.moveaxis(p_pairs, 1, 0).reshape(-1, 2),
-                                np.tile(t_pairs, (self.S, 1))], axis=1)     # (S·(5m−4), 4)
+        dev = (np.arange(self.S) if self.outline_degree > 0 else np.zeros(self.S, int))
+        t_pairs = (t_pairs[None] + 2 * self.m * dev[:, None, None]).reshape(-1, 2)
+        pairs = np.concatenate([np.moveaxis(p_pairs, 1, 0).reshape(-1, 2), t_pairs],
+                               axis=1)                                        # (S·(5m−4), 4)
         for name, value in (("vid", vid), ("corners", corners), ("pairs", pairs)):
             value.setflags(write=False)
             object.__setattr__(self, name, value)
@@ -75,17 +91,32 @@ class StripSetLayout:
         return (self.m - 1) * self.S
 
     @property
+    def n_devs(self) -> int:
+        """Developments: 1 (shared vertices) or S (shared outline)."""
+        return self.S if self.outline_degree > 0 else 1
+
+    @property
     def t_offset(self) -> int:
         return 3 * self.n_vertices + 3 * self.n_quads
 
     @property
-    def size(self) -> int:
-        return self.t_offset + 4 * self.m + 3 * (self.m - 1)
+    def c_offset(self) -> int:
+        """Columns of the outline coefficients ``c (2, d+1)`` (none when shared)."""
+        return self.t_offset + 4 * self.m * self.n_devs
 
     @property
     def slack_offset(self) -> int:
-        """Columns of the slack variables σ of :func:`template_order`, ``3 (m−1)``."""
-        return self.t_offset + 4 * self.m
+        """Columns of the slack variables σ of :func:`template_order`, ``3 (m−1) D``."""
+        return self.c_offset + (2 * (self.outline_degree + 1) if self.outline_degree > 0 else 0)
+
+    @property
+    def turn_offset(self) -> int:
+        """Columns of the slack variables of :func:`ruling_turn`, ``2 (m−1) D``."""
+        return self.slack_offset + 3 * (self.m - 1) * self.n_devs
+
+    @property
+    def size(self) -> int:
+        return self.turn_offset + 2 * (self.m - 1) * self.n_devs
 
     def f_cols(self, vertex_ids) -> np.ndarray:
         """Columns of p_i, shape ``(*vertex_ids.shape, 3)``."""
@@ -105,32 +136,43 @@ class StripSetLayout:
         return x[: 3 * nv].reshape(nv, 3), x[3 * nv: self.t_offset].reshape(-1, 3)
 
     def template(self, x: np.ndarray) -> np.ndarray:
-        """The template ``(m, 2, 2)``: ``[u, 0] = a_u``, ``[u, 1] = b_u``."""
-        return x[self.t_offset:self.slack_offset].reshape(self.m, 2, 2).copy()
+        """The template ``(m, 2, 2)`` (``[u, 0] = a_u``, ``[u, 1] = b_u``), or with a shared
+        outline the developments ``(S, m, 2, 2)``."""
+        t = x[self.t_offset:self.c_offset]
+        return (t.reshape(self.S, self.m, 2, 2) if self.outline_degree > 0
+                else t.reshape(self.m, 2, 2)).copy()
+
+    def coefficients(self, x: np.ndarray) -> np.ndarray:
+        """The outline coefficients ``(2, d+1)`` (shared outline only)."""
+        return x[self.c_offset:self.slack_offset].reshape(2, -1).copy()
 
     def strips(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The strips' vertices ``A, B (S, m, 3)``."""
         p = x[: 3 * self.n_vertices].reshape(self.m, self.S, 2, 3)
         return np.moveaxis(p[:, :, 0], 1, 0).copy(), np.moveaxis(p[:, :, 1], 1, 0).copy()
 
-    def pack(self, A: np.ndarray, B: np.ndarray, template: np.ndarray) -> np.ndarray:
-        """Variable vector from strips ``A, B (S, m, 3)`` and a template ``(m, 2, 2)``; n_q the
-        unit normal of the diagonals' cross product (+z for a degenerate quad)."""
+    def pack(self, A: np.ndarray, B: np.ndarray, template: np.ndarray,
+             coefficients: np.ndarray | None = None) -> np.ndarray:
+        """Variable vector from strips ``A, B (S, m, 3)``, a template ``(m, 2, 2)`` (or the
+        developments ``(S, m, 2, 2)`` and outline ``coefficients (2, d+1)``); n_q the unit
+        normal of the diagonals' cross product (+z for a degenerate quad); σ zero."""
         p = np.stack([np.moveaxis(np.asarray(A, float), 0, 1),
                       np.moveaxis(np.asarray(B, float), 0, 1)], axis=2).reshape(-1, 3)
         c = p[self.corners]
         n = np.cross(c[:, 2] - c[:, 0], c[:, 3] - c[:, 1])
         norm = np.linalg.norm(n, axis=1, keepdims=True)
         n = np.where(norm > 0, n / np.where(norm > 0, norm, 1.0), [0.0, 0.0, 1.0])
-        return np.concatenate([p.ravel(), n.ravel(), np.asarray(template, float).ravel(),
-                               np.zeros(3 * (self.m - 1))])
+        c = (np.asarray(coefficients, float).ravel() if self.outline_degree > 0
+             else np.zeros(0))
+        return np.concatenate([p.ravel(), n.ravel(), np.asarray(template, float).ravel(), c,
+                               np.zeros(5 * (self.m - 1) * self.n_devs)])
 
 
 def template_isometry(x, layout: StripSetLayout):
     """Residuals ``½(‖p_i − p_j‖² − ‖t_k − t_l‖²)`` (one per edge, ruling and diagonal of every
     strip quad) against the template's same pair. Quadratic, so the Jacobian is exact."""
     p, _ = layout.split(x)
-    t = x[layout.t_offset:layout.slack_offset].reshape(-1, 2)
+    t = x[layout.t_offset:layout.c_offset].reshape(-1, 2)
     i, j, k, l = layout.pairs.T  # noqa: E741 - vertex indices
     dp = p[i] - p[j]
     dt = t[k] - t[l]
@@ -209,31 +251,112 @@ def plane_offsets(x, layout: StripSetLayout, samples, points, normals):
 
 
 def template_order(x, layout: StripSetLayout, direction, sign, step, area):
-    """Residuals ``g − ε − σ²`` (Tang et al. 2014's slack form of ``g ≥ ε``, 3 per template
-    quad): both boundary steps run forward, ``⟨a_(u+1) − a_u, e⟩ ≥ step`` and the same for b,
-    along the fixed unit ``direction`` e; and the quad keeps its turn, ``sign · (d₁ × d₂) ≥
-    area`` with the diagonals ``d₁ = b_(u+1) − a_u``, ``d₂ = a_(u+1) − b_u``: no two rulings
-    cross (no folded quad). Quadratic."""
-    m = layout.m
-    t = x[layout.t_offset:layout.slack_offset].reshape(m, 2, 2)
-    sig = x[layout.slack_offset:].reshape(3, m - 1)
+    """Residuals ``g − ε − σ²`` (Tang et al. 2014's slack form of ``g ≥ ε``, 3 per quad of
+    every development): both boundary steps run forward, ``⟨a_(u+1) − a_u, e⟩ ≥ step`` and the
+    same for b, along the fixed unit ``direction`` e; and the quad keeps its turn, ``sign ·
+    (d₁ × d₂) ≥ area`` with the diagonals ``d₁ = b_(u+1) − a_u``, ``d₂ = a_(u+1) − b_u``: no two
+    rulings cross (no folded quad). Quadratic."""
+    m, D = layout.m, layout.n_devs
+    t = x[layout.t_offset:layout.c_offset].reshape(D, m, 2, 2)
+    sig = x[layout.slack_offset:layout.turn_offset].reshape(3, D, m - 1)
     e = np.asarray(direction, dtype=float)
-    a, b = t[:, 0], t[:, 1]
-    d1, d2 = b[1:] - a[:-1], a[1:] - b[:-1]
-    cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
-    phi = np.concatenate([np.diff(a, axis=0) @ e - step - sig[0] ** 2,
-                          np.diff(b, axis=0) @ e - step - sig[1] ** 2,
-                          sign * cross - area - sig[2] ** 2])
-    u = np.arange(m - 1)
-    r0, r1, r2 = (u + k * (m - 1) for k in range(3))
-    ia, ib = 2 * u, 2 * u + 1                        # template ids of a_u, b_u
-    g1 = sign * np.stack([d2[:, 1], -d2[:, 0]], -1)  # ∂cross/∂d1
-    g2 = sign * np.stack([-d1[:, 1], d1[:, 0]], -1)  # ∂cross/∂d2
-    sc = layout.slack_offset + np.arange(3 * (m - 1)).reshape(3, m - 1)
+    a, b = t[:, :, 0], t[:, :, 1]
+    d1, d2 = b[:, 1:] - a[:, :-1], a[:, 1:] - b[:, :-1]
+    cross = d1[..., 0] * d2[..., 1] - d1[..., 1] * d2[..., 0]
+    phi = np.concatenate([(np.diff(a, axis=1) @ e - step - sig[0] ** 2).ravel(),
+                          (np.diff(b, axis=1) @ e - step - sig[1] ** 2).ravel(),
+                          (sign * cross - area - sig[2] ** 2).ravel()])
+    r0, r1, r2 = (np.arange(D * (m - 1)) + k * D * (m - 1) for k in range(3))
+    ia = (2 * m * np.arange(D)[:, None] + 2 * np.arange(m - 1)[None]).ravel()  # ids of a_u
+    ib = ia + 1
+    g1 = sign * np.stack([d2[..., 1], -d2[..., 0]], -1).reshape(-1, 2)   # ∂cross/∂d1
+    g2 = sign * np.stack([-d1[..., 1], d1[..., 0]], -1).reshape(-1, 2)   # ∂cross/∂d2
+    sc = layout.slack_offset + np.arange(3 * D * (m - 1))
     J = jacobian(phi.size, layout.size,
                  (r0[:, None], layout.t_cols(ia + 2), e), (r0[:, None], layout.t_cols(ia), -e),
                  (r1[:, None], layout.t_cols(ib + 2), e), (r1[:, None], layout.t_cols(ib), -e),
                  (r2[:, None], layout.t_cols(ib + 2), g1), (r2[:, None], layout.t_cols(ia), -g1),
                  (r2[:, None], layout.t_cols(ia + 2), g2), (r2[:, None], layout.t_cols(ib), -g2),
-                 (np.concatenate([r0, r1, r2]), sc.ravel(), -2.0 * sig.ravel()))
+                 (np.concatenate([r0, r1, r2]), sc, -2.0 * sig.ravel()))
     return phi, J
+
+
+def ruling_turn(x, layout: StripSetLayout, tan_max: float):
+    """Residuals ``tan θ · ⟨r_u, r_(u+1)⟩ ∓ r_u × r_(u+1) − σ²`` (2 per pair of neighbouring
+    rulings ``r_u = b_u − a_u`` of every development, Tang et al. 2014's slack form of ``g ≥
+    0``): both hold exactly when the rulings turn by at most θ (``tan_max`` = tan θ) and keep
+    their sense. A planar quad holds both its rulings, so this is also their angle in 3-D: the
+    score lines of neighbouring quads stay within θ. Quadratic."""
+    m, D = layout.m, layout.n_devs
+    t = x[layout.t_offset:layout.c_offset].reshape(D, m, 2, 2)
+    sig = x[layout.turn_offset:].reshape(2, D, m - 1)
+    r = t[:, :, 1] - t[:, :, 0]                                            # (D, m, 2)
+    r0, r1 = r[:, :-1], r[:, 1:]
+    dot = np.einsum("dui,dui->du", r0, r1)
+    cross = r0[..., 0] * r1[..., 1] - r0[..., 1] * r1[..., 0]
+    phi = np.concatenate([(tan_max * dot - cross - sig[0] ** 2).ravel(),
+                          (tan_max * dot + cross - sig[1] ** 2).ravel()])
+    n = D * (m - 1)
+    ia = (2 * m * np.arange(D)[:, None] + 2 * np.arange(m - 1)[None]).ravel()  # ids of a_u
+    rr0, rr1 = r0.reshape(-1, 2), r1.reshape(-1, 2)
+    dc0 = np.stack([rr1[:, 1], -rr1[:, 0]], -1)                           # ∂cross/∂r_u
+    dc1 = np.stack([-rr0[:, 1], rr0[:, 0]], -1)                           # ∂cross/∂r_(u+1)
+    blocks = []
+    for k, sign in ((0, -1.0), (1, 1.0)):
+        rows = (k * n + np.arange(n))[:, None]
+        g0, g1 = tan_max * rr1 + sign * dc0, tan_max * rr0 + sign * dc1   # ∂/∂r_u, ∂/∂r_(u+1)
+        blocks += [(rows, layout.t_cols(ia + 1), g0), (rows, layout.t_cols(ia), -g0),
+                   (rows, layout.t_cols(ia + 3), g1), (rows, layout.t_cols(ia + 2), -g1)]
+    blocks.append((np.arange(2 * n), layout.turn_offset + np.arange(2 * n), -2.0 * sig.ravel()))
+    return phi, jacobian(phi.size, layout.size, *blocks)
+
+
+@functools.lru_cache(maxsize=8)
+def _chebyshev_derivative(degree: int) -> np.ndarray:
+    """``(d+1, d+1)``: column k holds the Chebyshev coefficients of ``T_k'``."""
+    from numpy.polynomial import chebyshev
+
+    out = np.stack([np.pad(chebyshev.chebder(np.eye(degree + 1)[k]), (0, 1))
+                    for k in range(degree + 1)], axis=1)
+    out.setflags(write=False)
+    return out
+
+
+def chebyshev_basis(y, degree: int) -> tuple[np.ndarray, np.ndarray]:
+    """Chebyshev polynomials ``T_0 .. T_d`` and their derivatives at ``y (k,)``, each
+    ``(k, d+1)``."""
+    from numpy.polynomial import chebyshev
+
+    V = chebyshev.chebvander(np.asarray(y, dtype=float), degree)
+    return V, V @ _chebyshev_derivative(degree)
+
+
+def template_outline(x, layout: StripSetLayout, y0: float, h: float):
+    """Shared outline (``outline_degree`` d > 0): residuals ``x_(s,u,j) − Σ_k c_(j,k)
+    T_k((y_(s,u,j) − y0) / h)`` for every development vertex ``(x, y)`` (strip s, row u,
+    boundary j: a or b) on its outline curve, and ``t_(s,r,j) − t_(0,r,j)`` (2-D) for the end
+    rows r = 0, m−1 of every strip s ≥ 1: the parts' end edges are shared too, so every strip
+    is cut from the same outline between the same ends. Polynomial (exact Jacobian)."""
+    m, S, d = layout.m, layout.S, layout.outline_degree
+    t = x[layout.t_offset:layout.c_offset].reshape(S, m, 2, 2)
+    c = x[layout.c_offset:layout.slack_offset].reshape(2, d + 1)
+    yh = (t[..., 1] - y0) / h                                             # (S, m, 2)
+    V, dV = chebyshev_basis(yh.ravel(), d)                                 # (S m 2, d+1)
+    side = np.tile([0, 1], S * m)
+    phi_on = t[..., 0].ravel() - np.einsum("kd,kd->k", V, c[side])
+    slope = np.einsum("kd,kd->k", dV, c[side]) / h
+    ids = np.arange(S * m * 2)                                             # 2m s + 2u + j
+    rows = np.arange(phi_on.size)
+    ends = np.array([0, 1, 2 * m - 2, 2 * m - 1])
+    later = (2 * m * np.arange(1, S)[:, None] + ends[None]).ravel()        # (4 (S−1),)
+    first = np.tile(ends, S - 1)
+    phi_end = (x[layout.t_cols(later)] - x[layout.t_cols(first)]).ravel()
+    rows_end = phi_on.size + np.arange(phi_end.size).reshape(-1, 2)
+    c_cols = layout.c_offset + (d + 1) * side[:, None] + np.arange(d + 1)
+    J = jacobian(phi_on.size + phi_end.size, layout.size,
+                 (rows, layout.t_cols(ids)[:, 0], 1.0),
+                 (rows, layout.t_cols(ids)[:, 1], -slope),
+                 (rows[:, None], c_cols, -V),
+                 (rows_end, layout.t_cols(later), 1.0),
+                 (rows_end, layout.t_cols(first), -1.0))
+    return np.concatenate([phi_on, phi_end]), J
