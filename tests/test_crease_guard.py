@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from jacobian_check import assert_jacobian_matches_finite_differences
 
-from dgpc_cli.core.constraints.crease_guard import CREASE_MARGIN, crease_guard
+from dgpc_cli.core.constraints.crease_guard import CREASE_MARGIN, CREASE_RATIO, crease_guard
 from dgpc_cli.core.layout import NetLayout
 from dgpc_cli.metrics.crease import CREASE_LIMIT
 
@@ -48,6 +48,26 @@ def test_a_smooth_drag_is_free_and_a_kink_pays_its_excess():
     assert phi[1, [4, 5]] == pytest.approx(3 * 0.2 - CREASE_MARGIN, abs=0.02)
     assert phi[1, [3, 6]] == pytest.approx(0.2 - CREASE_MARGIN, abs=0.02)
     assert np.all(phi[1, [0, 1, 2, 7, 8]] == 0.0)
+
+
+def test_a_coarse_row_may_bend_by_a_multiple_of_its_own_third_difference():
+    """Five vertices over 3 rad (0.75 rad apart): each row's third difference is 1.6 on its
+    own. The middle vertex pushed out by 0.3 (growth 0.51, above the margin) is free, within
+    twice that; pushed out by 2.0 (growth 5.2) it pays the excess."""
+    f0 = circle_rows(m=2, n=5, span=3.0)
+    layout = NetLayout(2, 5)
+    own = np.linalg.norm(f0[:, 3:] - 3 * f0[:, 2:-1] + 3 * f0[:, 1:-2] - f0[:, :-3], axis=-1)
+    assert own == pytest.approx(8 * np.sin(0.375) ** 3 * 4.0, rel=1e-9)
+    for push, paid in ((0.3, False), (2.0, True)):
+        moved = f0.copy()
+        moved[0, 2, :2] *= 1 + push / 4.0
+        phi, _ = crease_guard(layout.pack(moved), layout, f0)
+        growth = np.linalg.norm(moved[0, 3:] - 3 * moved[0, 2:-1] + 3 * moved[0, 1:-2]
+                                - moved[0, :-3], axis=-1) - own[0]
+        assert growth.max() > CREASE_MARGIN
+        assert phi[:2] == pytest.approx(np.maximum(growth - CREASE_RATIO * own[0], 0.0),
+                                        abs=1e-12)
+        assert (phi.max() > 0) == paid
 
 
 def test_its_jacobian_matches_finite_differences_where_it_acts():

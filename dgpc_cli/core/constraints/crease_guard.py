@@ -11,9 +11,10 @@ The guard acts only where a row bends sharply: for every run of four vertices ``
 row, with ``d₃ = f_d − 3 f_c + 3 f_b − f_a`` (its third difference along the row) and ``d₃⁰``
 that of the start net, the residual is
 
-    max(0, ‖d₃‖ − ‖d₃⁰‖ − margin)
+    max(0, ‖d₃‖ − ‖d₃⁰‖ − max(margin, 2‖d₃⁰‖))
 
-(in units of the start net's mean edge length). It is zero on every smooth drag and grows
+(in units of the start net's mean edge length): a row may bend by the margin, or by twice its
+own third difference where a coarse net's rows are that sharp already. It is zero on every smooth drag and grows
 linearly past the margin; the Jacobian ``d₃ᵀ/‖d₃‖ · (−1, 3, −3, 1)`` is kept at every run (zeros
 where the guard is inactive) so that its pattern does not depend on x.
 """
@@ -28,6 +29,10 @@ from dgpc_cli.core.constraints.base import jacobian
 #: for free: below the crease the metrics flag (0.05, ``metrics.crease``), so that a guarded drag
 #: of a smooth net stays unflagged (a 21×21 sphere net's rows have 0.016 of their own).
 CREASE_MARGIN = 0.03
+#: ... or this multiple of the run's own third difference, where that is more: a coarse net's
+#: rows bend sharply at every vertex (0.05 to 0.08 mean edges on a 9×7 Gehry net), and a smooth
+#: drag of it changes them by as much.
+CREASE_RATIO = 2.0
 
 
 def row_runs(layout):
@@ -38,14 +43,15 @@ def row_runs(layout):
 
 
 def crease_guard(x, layout, f0, margin: float = CREASE_MARGIN):
-    """Residuals ``max(0, ‖d₃‖ − ‖d₃⁰‖ − margin)``, one per run of four vertices of a row
+    """Residuals ``max(0, ‖d₃‖ − ‖d₃⁰‖ − max(margin, CREASE_RATIO · ‖d₃⁰‖))``, one per run of four vertices of a row
     (see the module docstring), against the start net ``f0 (|V|, 3)`` or ``(m, n, 3)``."""
     f, _, _ = layout.split(x)
     g0 = np.asarray(f0, dtype=float).reshape(-1, 3)
     a, b, c, d = row_runs(layout)
     d3 = f[d] - 3.0 * f[c] + 3.0 * f[b] - f[a]
     length = np.linalg.norm(d3, axis=1)
-    allowed = np.linalg.norm(g0[d] - 3.0 * g0[c] + 3.0 * g0[b] - g0[a], axis=1) + margin
+    own = np.linalg.norm(g0[d] - 3.0 * g0[c] + 3.0 * g0[b] - g0[a], axis=1)
+    allowed = own + np.maximum(margin, CREASE_RATIO * own)
     active = length > allowed
     phi = np.where(active, length - allowed, 0.0)
     unit = np.where(active[:, None], d3 / np.where(active, length, 1.0)[:, None], 0.0)
