@@ -25,10 +25,10 @@ Guided projection minimizes Σ w_t ‖φ_t‖² (plus its damping), so the weigh
   push creases the rows (three columns from a held corner, at the pushed vertex); the
   ``crease_guard`` (1) lets no run of a row's third differences grow more than its margin over
   the start net's. Measured on the 21×21 sphere net (120°), corners of row 0 held, its middle
-  pushed 5 % of the radius towards the axis: crease 0.123 → 0.046 mean edges, strain 1.5e-4 →
+  pushed 5 % of the radius towards the axis: crease 0.123 → 0.048 mean edges, strain 1.5e-4 →
   2.9e-4 (at 21×21 a smooth net pays for this push in strain); on the 41×41 net crease 0.054 →
-  0.034, strain 6.0e-5 → 3.3e-5; Gehry facades 1–2: crease 0.155 → 0.052, strain 3.1e-5 →
-  4.1e-5.
+  0.034, strain 6.0e-5 → 3.3e-5; Gehry facade 1 (21×13): crease 0.155 → 0.066, strain 3.1e-5
+  → 3.9e-5.
 
 Weights hold as written for a net scaled to mean edge length 1 (``core.problem``).
 """
