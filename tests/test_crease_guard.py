@@ -18,6 +18,11 @@ def circle_rows(m=4, n=12, radius=4.0, span=1.5):
     return np.stack([row + [0.0, 0.0, 1.0 * k] for k in range(m)])
 
 
+def row_third_differences(g):
+    """‖d₃‖ of every run of four vertices along the rows of ``g (m, n, 3)``, ``(m, n − 3)``."""
+    return np.linalg.norm(g[:, 3:] - 3 * g[:, 2:-1] + 3 * g[:, 1:-2] - g[:, :-3], axis=-1)
+
+
 def test_the_margin_leaves_the_crease_the_metrics_flag_unreached():
     assert 0 < CREASE_MARGIN < CREASE_LIMIT
 
@@ -38,9 +43,7 @@ def test_a_smooth_drag_is_free_and_a_kink_pays_its_excess():
     kinked[1, 6, :2] *= 1 - 0.2 / 4.0          # 0.2 towards the axis
     phi, _ = crease_guard(layout.pack(kinked), layout, f0)
     phi = phi.reshape(4, 9)
-    d3 = lambda g: np.linalg.norm(g[:, 3:] - 3 * g[:, 2:-1] + 3 * g[:, 1:-2] - g[:, :-3],
-                                  axis=-1)
-    growth = d3(kinked) - d3(f0)
+    growth = row_third_differences(kinked) - row_third_differences(f0)
     assert np.all(phi[[0, 2, 3]] == 0.0)
     assert phi[1] == pytest.approx(np.maximum(growth[1] - CREASE_MARGIN, 0.0), abs=1e-12)
     # the runs v = 3 … 6 (weight 1 on the kink) to v = 6 … 9: the middle two carry it thrice
@@ -56,14 +59,13 @@ def test_a_coarse_row_may_bend_by_a_multiple_of_its_own_third_difference():
     twice that; pushed out by 2.0 (growth 5.2) it pays the excess."""
     f0 = circle_rows(m=2, n=5, span=3.0)
     layout = NetLayout(2, 5)
-    own = np.linalg.norm(f0[:, 3:] - 3 * f0[:, 2:-1] + 3 * f0[:, 1:-2] - f0[:, :-3], axis=-1)
+    own = row_third_differences(f0)
     assert own == pytest.approx(8 * np.sin(0.375) ** 3 * 4.0, rel=1e-9)
     for push, paid in ((0.3, False), (2.0, True)):
         moved = f0.copy()
         moved[0, 2, :2] *= 1 + push / 4.0
         phi, _ = crease_guard(layout.pack(moved), layout, f0)
-        growth = np.linalg.norm(moved[0, 3:] - 3 * moved[0, 2:-1] + 3 * moved[0, 1:-2]
-                                - moved[0, :-3], axis=-1) - own[0]
+        growth = row_third_differences(moved)[0] - own[0]
         assert growth.max() > CREASE_MARGIN
         assert phi[:2] == pytest.approx(np.maximum(growth - CREASE_RATIO * own[0], 0.0),
                                         abs=1e-12)

@@ -14,9 +14,9 @@ that of the start net, the residual is
     max(0, ‖d₃‖ − ‖d₃⁰‖ − max(margin, 2‖d₃⁰‖))
 
 (in units of the start net's mean edge length): a row may bend by the margin, or by twice its
-own third difference where a coarse net's rows are that sharp already. It is zero on every smooth drag and grows
-linearly past the margin; the Jacobian ``d₃ᵀ/‖d₃‖ · (−1, 3, −3, 1)`` is kept at every run (zeros
-where the guard is inactive) so that its pattern does not depend on x.
+own third difference where a coarse net's rows are that sharp already. It is zero on every
+smooth drag and grows linearly past that; the Jacobian ``d₃ᵀ/‖d₃‖ · (−1, 3, −3, 1)`` is kept
+at every run (zeros where the guard is inactive) so that its pattern does not depend on x.
 """
 
 from __future__ import annotations
@@ -43,8 +43,9 @@ def row_runs(layout):
 
 
 def crease_guard(x, layout, f0, margin: float = CREASE_MARGIN):
-    """Residuals ``max(0, ‖d₃‖ − ‖d₃⁰‖ − max(margin, CREASE_RATIO · ‖d₃⁰‖))``, one per run of four vertices of a row
-    (see the module docstring), against the start net ``f0 (|V|, 3)`` or ``(m, n, 3)``."""
+    """Residuals ``max(0, ‖d₃‖ − ‖d₃⁰‖ − max(margin, CREASE_RATIO · ‖d₃⁰‖))``, one per run
+    of four vertices of a row (see the module docstring), against the start net
+    ``f0 (|V|, 3)`` or ``(m, n, 3)``."""
     f, _, _ = layout.split(x)
     g0 = np.asarray(f0, dtype=float).reshape(-1, 3)
     a, b, c, d = row_runs(layout)
