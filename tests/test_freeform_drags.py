@@ -175,7 +175,8 @@ def test_a_drag_left_above_the_gpc_margin_weighs_the_angle_condition_more(tmp_pa
 def test_a_relaxation_round_that_begins_to_pleat_ends_there(tmp_path):
     """Gehry facade 3 at 21×13 without the crease guard (with it the round does not pleat): the
     first round at a lower smoothness pleats from its eighth iteration on, monotonically, and
-    would be refused at its end; it ends at the first point of descent where the pleat passes half its tolerance (11 iterations; 21 before), and the round
+    would be refused at its end; it ends at the first point of descent where the pleat passes
+    half its tolerance (11 iterations; 21 before), and the round
     with (6) weighed more lands the net as before: converged, no pleat, strain within the
     tolerance."""
     from pathlib import Path
