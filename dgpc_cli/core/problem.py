@@ -21,11 +21,11 @@ from dgpc_cli.core.solver import Schedule, Term
 #: net cannot lie on exactly, e.g. a nearly developable fit, paper Fig. 8).
 SOFT_TERMS = ("fairness",)
 #: Terms bound to the net a drag starts from (``Problem.f_start``).
-START_TERMS = ("displacement_fairness", "displacement_smoothness", "closeness")
+START_TERMS = ("displacement_fairness", "displacement_smoothness", "closeness", "crease_guard")
 #: Terms that only shape the solution (smoothness, staying put): in no residual norm and not
 #: in R.
 REGULARIZERS = ("fairness", "displacement_fairness", "displacement_smoothness", "closeness",
-                "equal_u_edges")
+                "equal_u_edges", "crease_guard")
 
 
 def mean_edge_length(f: np.ndarray) -> float:

@@ -2,6 +2,7 @@
 
 from dgpc_cli.core.constraints.approximation import approximation
 from dgpc_cli.core.constraints.boundary import boundary
+from dgpc_cli.core.constraints.crease_guard import crease_guard
 from dgpc_cli.core.constraints.fairness import (
     closeness,
     displacement_fairness,
@@ -36,6 +37,7 @@ TERMS = {
     "displacement_fairness": displacement_fairness,
     "displacement_smoothness": displacement_smoothness,
     "closeness": closeness,
+    "crease_guard": crease_guard,
 }
 
 __all__ = ["TERMS", *TERMS]
