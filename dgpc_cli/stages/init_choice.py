@@ -164,8 +164,8 @@ def _auto_sections(mesh: ReferenceMesh) -> list[Candidate]:
     for a in SWEEP:
         add(f"section {a:g}°", rotated(axes[:, 0], axes[:, 2], a) if a else axes[:, 0])
     sides, _ = extent_axes(mesh.vertices)
-    add("spine", sides[:, 0])
-    add("across", sides[:, 1])
+    add("along the longest extent", sides[:, 0])
+    add("along the second extent", sides[:, 1])
     return out
 
 

@@ -57,8 +57,10 @@ from dgpc_cli.stages.polish import polish_weights
 
 log = logging.getLogger(__name__)
 
-#: Iterations of the quick fit that ranks the finalists (the fit itself takes 20–40).
-QUICK_FIT_ITERATIONS = 5
+#: Iterations of the quick fit that ranks the finalists (the fit itself takes 20–40; after 5 a
+#: fit has not yet pulled in what it will, after 10 mostly has: an apse roof at 98.5 % as traced
+#: read 97.7 % after 5, 93.9 % after 10, 92.1 % after 20 and at the end).
+QUICK_FIT_ITERATIONS = 10
 #: Candidates of each round (by the coverage of the traced net) that get a quick fit.
 FINALISTS = 3
 #: An overhang is searched when the best net kept on the mesh covers less than this.
@@ -155,6 +157,8 @@ def _cover(t: Trial) -> float:
 
 def _rank(trials: list[Trial]) -> tuple[Trial, str]:
     """The trial chosen (see the module) and why, in a few words."""
+    if len(trials) == 1:
+        return trials[0], "is the one the options name"
     scored = [t for t in trials if t.scored]
     if not scored:
         sound = [t for t in trials if t.outcome is not None]
