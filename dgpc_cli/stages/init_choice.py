@@ -111,8 +111,10 @@ def named_curve(mesh: ReferenceMesh, name: str) -> BoundaryCurve:
 
 
 def candidates(mesh: ReferenceMesh, method: str, *, base: str | None, direction,
-               angle: float | None) -> list[Candidate]:
-    """The candidates to try (see the module), in order of preference."""
+               angle: float | None, frame: ReferenceMesh | None = None) -> list[Candidate]:
+    """The candidates to try (see the module), in order of preference; the sweep of sections
+    turns the principal axes of ``frame`` (default: ``mesh``; ``--extend`` given: its
+    continuation, as ``--angle`` does)."""
     if method == "project":
         if angle is not None:
             return [Candidate(f"project {angle:g}°", {"direction": direction, "angle": angle})]
@@ -131,7 +133,7 @@ def candidates(mesh: ReferenceMesh, method: str, *, base: str | None, direction,
         return [Candidate(f"project {a:g}°", {"direction": direction, "angle": a})
                 for a in angles]
     if base in (None, "auto") and direction is None and angle is None:
-        sections = _auto_sections(mesh)
+        sections = _auto_sections(mesh, mesh if frame is None else frame)
         return (sections[:2] + [Candidate(f"boundary {c.name}", {"curve": c})
                                 for c in _curves(mesh)] + sections[2:])
     if base == "boundary":
@@ -147,10 +149,11 @@ def candidates(mesh: ReferenceMesh, method: str, *, base: str | None, direction,
     return [Candidate(label, {"direction": direction, "angle": angle or 0.0})]
 
 
-def _auto_sections(mesh: ReferenceMesh) -> list[Candidate]:
+def _auto_sections(mesh: ReferenceMesh, frame: ReferenceMesh) -> list[Candidate]:
     """The sections the automatic choice tries (see the module), their planes' normals
-    resolved on ``mesh`` itself, so that the same planes cut its continuation."""
-    _, axes = principal_frame(mesh.vertices, mesh.faces)
+    resolved once (the sweep on ``frame``'s principal axes, the extents of ``mesh``), so that
+    the same planes cut every continuation."""
+    _, axes = principal_frame(frame.vertices, frame.faces)
     listed: list[np.ndarray] = []
     out = []
 
@@ -205,6 +208,7 @@ def evaluate(mesh: ReferenceMesh, domain: ReferenceMesh, method: str, cand: Cand
     if fixed is None:
         log.info("%s: degenerate, no sound rectangle left (%s)", cand.label, note)
         return {"candidate": cand.label, "shape": list(shape), "degenerate": note}, None
+    fixed.label = cand.label
     cov = coverage(fixed.net.f, mesh.vertices, mesh.faces, samples=COVERAGE_SAMPLES,
                    surface=surface)["area_fraction"]
     log.info("%s: %d x %d net covers %.1f %% of the reference%s", cand.label,

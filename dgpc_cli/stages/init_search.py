@@ -21,8 +21,8 @@ coverage of the reference (``metrics.coverage``, on the mesh itself: what trimme
 clad), whether the fitted net folds (``metrics.degenerate``), and how much its strips vary in
 width along themselves over the reference (``metrics.width_ratio``). The choice: of the nets
 that do not fold, those within :data:`COVERAGE_SLACK` of the best coverage; of those the one
-whose widths vary least; ties go to the earlier candidate (an old default, less overhang,
-fewer columns). Every candidate tried is recorded with its figures.
+whose widths vary least, within :data:`WIDTH_SLACK`; ties go to the earlier candidate (an
+old default, less overhang, fewer columns). Every candidate tried is recorded with its figures.
 """
 
 from __future__ import annotations
@@ -78,6 +78,9 @@ EXTEND_MIN_STEP = 0.02
 SIZES = (31, 41)
 #: Nets covering within this of the best count as covering as much.
 COVERAGE_SLACK = 0.005
+#: ... and of those, nets whose strip widths vary within this fraction of the least variation
+#: count as varying as little (the earlier candidate wins).
+WIDTH_SLACK = 0.1
 
 
 @dataclass
@@ -170,7 +173,9 @@ def _rank(trials: list[Trial]) -> tuple[Trial, str]:
     pool = unfolded or scored
     best = max(t.quick["coverage"] for t in pool)
     close = [t for t in pool if t.quick["coverage"] >= best - COVERAGE_SLACK]
-    chosen = min(close, key=lambda t: t.quick.get("width_ratio", math.inf))
+    least = min(t.quick.get("width_ratio", math.inf) for t in close)
+    chosen = next(t for t in close
+                  if t.quick.get("width_ratio", math.inf) <= least * (1 + WIDTH_SLACK))
     note = f"; {folded} folded in the quick fit" if folded and unfolded else ""
     if len(close) == 1:
         rest = sorted((t for t in pool if t is not chosen), key=_cover, reverse=True)
@@ -190,7 +195,6 @@ def search(mesh: ReferenceMesh, *, base: str | None = None, direction=None,
     say = progress or (lambda text: None)
     given_extend = extend is not None
     size = {"rows": rows, "cols": cols, "spacing": spacing}
-    cands = candidates(mesh, "geodesic", base=base, direction=direction, angle=angle)
     e0 = float(extend) if given_extend else 0.0
     diagonal = mesh.bbox_diagonal
     trials: list[Trial] = []
@@ -239,6 +243,8 @@ def search(mesh: ReferenceMesh, *, base: str | None = None, direction=None,
 
     # the base curves, on the mesh (or over the overhang given)
     dom = domain_of(e0)
+    cands = candidates(mesh, "geodesic", base=base, direction=direction, angle=angle,
+                       frame=dom)
     explicit = len(cands) == 1
     first = run(cands, e0, dom, size, explicit=explicit)
     if not any(t.outcome for t in first):
