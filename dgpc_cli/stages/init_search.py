@@ -6,11 +6,11 @@ It searches three things the user did not give:
 * the base curve (``stages.init_choice.candidates``: a sweep of sections, the boundary curves,
   the sections across the longest extents), unless ``--base``, ``--direction`` or ``--angle``
   names one;
-* the overhang, unless ``--extend`` is given: when the best candidate kept on the mesh covers
-  less than :data:`EXTEND_BELOW` of it, the :data:`EXTEND_CANDIDATES` best base curves are
-  traced again on the mesh continued by each of :data:`EXTEND_STEPS` (of its diagonal) in turn,
-  up to the largest continuation that does not fold, until one covers :data:`EXTEND_ENOUGH` or
-  more overhang covers no more;
+* the overhang, unless ``--extend`` is given or the mesh is closed: when the best candidate
+  kept on the mesh covers less than :data:`EXTEND_BELOW` of it, the :data:`EXTEND_CANDIDATES`
+  best base curves are traced again on the mesh continued by each of :data:`EXTEND_STEPS` (of
+  its diagonal) in turn, up to the largest continuation that does not fold, until one covers
+  :data:`EXTEND_ENOUGH` or more overhang covers no more;
 * the size, unless ``--cols`` or ``--edge-length`` is given: the best net so far made again
   with each of :data:`SIZES` columns.
 
@@ -254,7 +254,7 @@ def search(mesh: ReferenceMesh, *, base: str | None = None, direction=None,
     tried_extends = [e0]
     # the overhang
     best, _ = _rank(trials)
-    if not given_extend and _cover(best) < EXTEND_BELOW:
+    if not given_extend and _cover(best) < EXTEND_BELOW and domains[e0][1].bounded:
         carried = [t.cand for t in sorted((t for t in first if t.outcome is not None),
                                           key=lambda t: -_cover(t))[:EXTEND_CANDIDATES]]
         previous = _cover(best)
