@@ -21,7 +21,7 @@ def shell(tmp_path_factory):
     d = tmp_path_factory.mktemp("shell")
     for name, direction in (("a", "1,0,0"), ("b", "0,1,0")):
         dgpc("init", WAVE, "--method", "geodesic", "--direction", direction, "--rows", 30,
-             "--cols", 20, "-o", d / f"{name}0")
+             "--cols", 20, "--extend", 0, "-o", d / f"{name}0")
         dgpc("optimize", d / f"{name}0", "--mode", "fit", "-o", d / name)
     r = dgpc("laths", d / "a", d / "b", "-o", d / "shell")
     assert r.stdout.strip() == str(d / "shell.json")

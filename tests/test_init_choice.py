@@ -49,7 +49,7 @@ def test_boundary_curves_are_the_outline_cut_at_its_corners(meshes):
 
 def test_a_boundary_base_curve_is_the_first_row(meshes, tmp_path):
     dgpc("init", meshes["roof"], "--method", "geodesic", "--base", "b1", "--cols", 11,
-         "-o", tmp_path / "n")
+         "--extend", 0, "-o", tmp_path / "n")
     net = read_net(tmp_path / "n")
     assert net.data["init"]["base"] == "boundary" and net.data["init"]["base_name"] == "b1"
     assert net.parameters["base"] == "b1"

@@ -86,8 +86,8 @@ def test_spacing(tmp_path):
     V, F = bent_sheet(10, 6, bump=0, resolution=0.25)
     path = tmp_path / "sheet.obj"
     path.write_bytes(write_mesh_obj(path, V, F))
-    dgpc("init", path, "--method", "geodesic", "--base", "section", "--edge-length", 1.0, "-o",
-         tmp_path / "s")
+    dgpc("init", path, "--method", "geodesic", "--base", "section", "--edge-length", 1.0,
+         "--extend", 0, "-o", tmp_path / "s")
     f = read_net(tmp_path / "s").f
     du = np.linalg.norm(np.diff(f, axis=0), axis=-1)
     dv = np.linalg.norm(np.diff(f, axis=1), axis=-1)

@@ -28,7 +28,8 @@ def vertex_distance(f, mesh):
 @pytest.fixture(scope="module")
 def geodesic(tmp_path_factory):
     d = tmp_path_factory.mktemp("geo")
-    dgpc("init", WAVE, "--method", "geodesic", "--rows", 30, "--cols", 20, "-o", d / "g0")
+    dgpc("init", WAVE, "--method", "geodesic", "--rows", 30, "--cols", 20, "--extend", 0,
+         "-o", d / "g0")
     dgpc("optimize", d / "g0", "--mode", "fit", "-o", d / "g1")
     return d
 

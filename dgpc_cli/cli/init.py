@@ -20,6 +20,7 @@ from dgpc_cli.cli.options import (
     output_opt,
     show_progress,
 )
+from dgpc_cli.cli.progress import StatusLine
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import net_files
@@ -66,14 +67,22 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
     from dgpc_cli.geodesics.extension import continued
     from dgpc_cli.io.mesh import load_mesh
     from dgpc_cli.stages.init_choice import choose
+    from dgpc_cli.stages.init_search import search
 
     if rows is not None and cols is not None:  # refused before the mesh is read
         check_net_size(rows, cols, "--rows/--cols", "use fewer --rows or --cols")
     mesh = load_mesh(reference, pieces="largest" if largest_component else "one")
-    domain = continued(mesh, extend)
-    grid, outcome, tried = choose(mesh, domain, method, base=base, direction=direction,
-                                  angle=angle, rows=rows, cols=cols, spacing=spacing,
-                                  extend_length=extend * mesh.bbox_diagonal)
+    if method == "geodesic":
+        with StatusLine(ctx, "init") as status:
+            found = search(mesh, base=base, direction=direction, angle=angle, rows=rows,
+                           cols=cols, spacing=spacing, extend=extend, progress=status)
+        grid, outcome, extend = found.grid, found.outcome, found.extend
+        tried = [t.record for t in found.trials]
+    else:
+        extend = extend or 0.0
+        grid, outcome, tried = choose(mesh, continued(mesh, extend), method, base=base,
+                                      direction=direction, angle=angle, rows=rows, cols=cols,
+                                      spacing=spacing, extend_length=extend * mesh.bbox_diagonal)
     net = grid.net
     net.parameters.update(base=base or ("auto" if method == "geodesic" else None),
                           angle=angle, largest_component=largest_component)
@@ -81,14 +90,25 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
         net.parameters["extend"] = extend
     net.data["init"]["choice"] = {"chosen": grid.label, "coverage": outcome.coverage,
                                   "tried": tried}
+    if method == "geodesic":
+        net.data["init"]["choice"]["search"] = found.record
     if outcome.note:
         log.warning("%s", outcome.note)
     if show_progress(ctx):
-        others = ", ".join(f"{t['candidate']} {100 * t['coverage']:.1f} %" for t in tried
-                           if "coverage" in t and t["candidate"] != grid.label)
-        click.echo(f"init: {grid.label}, {net.shape[0]} x {net.shape[1]} net covering "
-                   f"{100 * outcome.coverage:.1f} % of {mesh.path.name}"
-                   + (f" (also tried: {others})" if others else ""), err=True)
+        if method == "geodesic":
+            quick = found.chosen.quick or {}
+            after = (f", {100 * quick['coverage']:.1f} % after a quick fit"
+                     if "coverage" in quick else "")
+            click.echo(f"init: {found.chosen.describe()}, {net.shape[0]} x {net.shape[1]} net "
+                       f"covering {100 * outcome.coverage:.1f} % of {mesh.path.name}{after}: "
+                       f"chosen of {len(tried)} candidates because it {found.why} "
+                       f"(options: {found.record['options']})", err=True)
+        else:
+            others = ", ".join(f"{t['candidate']} {100 * t['coverage']:.1f} %" for t in tried
+                               if "coverage" in t and t["candidate"] != grid.label)
+            click.echo(f"init: {grid.label}, {net.shape[0]} x {net.shape[1]} net covering "
+                       f"{100 * outcome.coverage:.1f} % of {mesh.path.name}"
+                       + (f" (also tried: {others})" if others else ""), err=True)
     return net, mesh
 
 
@@ -107,9 +127,11 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
                    "planar grid onto the mesh along --direction (default: the mesh's overall "
                    "normal). Both keep the largest rectangle of the grid that lies on the "
                    "mesh, and never a folded or collapsed one. Without --base, --direction or "
-                   "--angle, init tries the principal directions and the boundary curves and "
-                   "keeps the net that covers most of the mesh (stderr and data.init.choice "
-                   "say which, and how much). A closed mesh works: geodesics are cut at its "
+                   "--angle, init tries a sweep of sections, the boundary curves and the "
+                   "sections across the longest extents (geodesic: and, without --extend and "
+                   "--cols, overhangs and sizes), ranks them after a quick fit and keeps the "
+                   "net that covers most of the mesh (stderr and data.init.choice say which, "
+                   "and why). A closed mesh works: geodesics are cut at its "
                    "extent along the direction; rays hit the side the direction points to.")
 @click.option("--base", metavar="auto|section|boundary|bK",
               help="--method geodesic: the base curve. 'section': the section by the plane "
@@ -132,14 +154,16 @@ def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacin
 @click.option("--largest-component", is_flag=True,
               help="Keep the largest connected piece of REFERENCE instead of rejecting a mesh "
                    "of several pieces.")
-@click.option("--extend", type=FiniteFloat(min=0, max=1), default=0.0, show_default=True,
+@click.option("--extend", type=FiniteFloat(min=0, max=1), default=None,
               metavar="FRACTION",
               help="With --method: let the net run beyond the mesh's outer boundary by up to "
                    "FRACTION of its bounding-box diagonal (a ratio, no unit; paper Fig. 14): "
                    "the net is traced "
                    "on the mesh continued in its boundary's tangent planes, and `optimize` "
                    "fits it to that continuation (reaching twice as far, so the net's rim "
-                   "meets no boundary); the net records the mesh itself.")
+                   "meets no boundary); the net records the mesh itself. Not given: 0, or "
+                   "with --method geodesic searched when the net would cover less than 97 % "
+                   "of the mesh.")
 @click.option("--patches", type=PatchCount(), metavar="auto|K",
               help="With --method: split the mesh into K patches along the necks and valleys "
                    "between its lobes and make one net on each (STEM.p1, STEM.p2, ..., each "
@@ -221,7 +245,7 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     if patches is not None and base not in (None, "auto", "section", "boundary"):
         raise click.UsageError(f"--base {base} names a boundary curve of the whole mesh; with "
                                "--patches give auto, section or boundary")
-    if extend > 0 and not method:
+    if extend is not None and extend > 0 and not method:
         raise click.UsageError("--extend goes with REFERENCE and --method")
     if (base or angle is not None) and not method:
         raise click.UsageError("--base and --angle go with REFERENCE and --method")
@@ -250,7 +274,8 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
             written = patch_nets(ctx, net, mesh, patches, output,
                                  {"method": method, "base": base, "direction": d,
                                   "angle": angle, "rows": rows, "cols": cols,
-                                  "spacing": spacing, "extend": extend,
+                                  "spacing": spacing,
+                                  "extend": net.parameters.get("extend", 0.0),
                                   "largest_component": largest_component},
                                  units=units, fmt=fmt, force=force)
             if written:

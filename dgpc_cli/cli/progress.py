@@ -79,3 +79,32 @@ class SolverProgress:
             parts.append("ETA " + ("?" if math.isinf(eta) else f"{eta:.0f} s"))
         self.stream.write("\r" + " · ".join(parts).ljust(78))
         self.stream.flush()
+
+
+class StatusLine:
+    """A one-line status ``LABEL: TEXT`` rewritten in place on stderr for a stage that tries
+    things one after another (``init``'s search of candidates): call the instance with the
+    text. Shown as :class:`SolverProgress` is (an interactive terminal, no ``-q``); with ``-v``
+    the stage's log says the same, line by line."""
+
+    def __init__(self, ctx, label: str, stream=None):
+        self.stream = stream or sys.stderr
+        self.label = label
+        self.visible = show_progress(ctx) and self.stream.isatty()
+        self.started = time.monotonic()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        if self.visible:
+            self.stream.write("\r" + " " * 78 + "\r")
+            self.stream.flush()
+
+    def __call__(self, text: str) -> None:
+        if not self.visible:
+            return
+        elapsed = time.monotonic() - self.started
+        line = f"{self.label}: {text} · {elapsed:.0f} s"
+        self.stream.write("\r" + line[:78].ljust(78))
+        self.stream.flush()

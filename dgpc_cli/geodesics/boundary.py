@@ -90,12 +90,13 @@ def describe(curves: list[BoundaryCurve]) -> str:
 
 
 def prolonged(curve: SectionCurve, vertices: np.ndarray, faces: np.ndarray,
-              length: float) -> SectionCurve:
+              length: float, tracer=None) -> SectionCurve:
     """The open ``curve`` on the mesh ``vertices, faces`` continued at both ends by geodesics
     (potpourri3d) along its end tangents, each up to ``length`` long: a boundary curve carried
     on into the continuation of ``init --extend`` (its first-order prolongation, as the rings
     of :func:`~dgpc_cli.geodesics.extension.extend_mesh` continue the surface). The faces of the
-    new segments are those nearest their midpoints (libigl AABB)."""
+    new segments are those nearest their midpoints (libigl AABB). ``tracer``: a
+    :class:`~dgpc_cli.geodesics.tracing.MeshGeodesics` of the mesh already made."""
     import igl
 
     from dgpc_cli.geodesics.tracing import MeshGeodesics
@@ -104,7 +105,7 @@ def prolonged(curve: SectionCurve, vertices: np.ndarray, faces: np.ndarray,
         return curve
     V = np.ascontiguousarray(vertices, dtype=float)
     F = np.ascontiguousarray(faces, dtype=np.int64)
-    tracer = MeshGeodesics(V, F)
+    tracer = MeshGeodesics(V, F) if tracer is None else tracer
     normals, _ = face_normals(V, F)
     P = curve.points
 

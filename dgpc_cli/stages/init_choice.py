@@ -2,19 +2,24 @@
 directions, never keeps a folded or collapsed net, and says what it chose and how much of the
 reference the net covers.
 
-* Candidates. ``--method geodesic``: the sections orthogonal to the two longest principal axes
-  and every boundary curve (``geodesics.boundary``) that is not tiny; ``--method project``: the
-  grid along the projected principal axis, at 45° to it, and along the chord of every boundary
-  curve. An explicit ``--base``/``--direction``/``--angle`` narrows them down to one (or, with
-  ``--base boundary``, to the boundary curves).
+* Candidates. ``--method geodesic``: the sections whose planes turn about the shortest
+  principal axis in a sweep of :data:`SWEEP` (0°, along the longest principal axis, first),
+  every boundary curve (``geodesics.boundary``) that is not tiny, and the sections across the
+  two longest sides of the mesh's bounding box of least volume (``geodesics.extent``: the
+  *spine* of a roof as wide as long, which the principal axes miss once its height tilts
+  them), a plane within :data:`SAME_PLANE` of one already listed left out; ``--method
+  project``: the grid along the projected principal axis, at 45° to it, and along the chord of
+  every boundary curve. An explicit ``--base``/``--direction``/``--angle`` narrows them down
+  to one (or, with ``--base boundary``, to the boundary curves). Which one ``init`` keeps,
+  after a quick fit, over which overhang and size, is ``stages.init_search``'s business.
 * Soundness. A candidate net that is degenerate (``metrics.degenerate``: collapsed edges, folded
   or flipped quads, and for traced geodesics a gpc defect above 0.1 rad; a projected grid is not
   gpc yet, ``optimize --mode fit`` makes it so) is made again over the largest rectangle of its
   sound quads (or cut down to it); an explicit choice whose sound rectangle keeps less than
   :data:`MIN_KEPT` of the net is refused, naming rows and columns and the candidate that works.
-* Choice. The sound net that covers most of the reference (``metrics.coverage``, measured on
-  the mesh itself, not on its continuation); within :data:`COVERAGE_SLACK` of the best the
-  earlier candidate wins, so that a plain section stays the default where it covers as well.
+* Choice (``--method project``). The sound net that covers most of the reference
+  (``metrics.coverage``, measured on the mesh itself, not on its continuation); within
+  :data:`COVERAGE_SLACK` of the best the earlier candidate wins.
 """
 
 from __future__ import annotations
@@ -26,12 +31,19 @@ import numpy as np
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.geodesics.boundary import BoundaryCurve, boundary_curves, describe, prolonged
+from dgpc_cli.geodesics.extent import extent_axes
 from dgpc_cli.geodesics.rectangle import largest_rectangle
 from dgpc_cli.geodesics.tracing import plane_axes, principal_frame
 from dgpc_cli.io.mesh import ReferenceMesh
 from dgpc_cli.metrics.coverage import coverage
 from dgpc_cli.metrics.degenerate import GPC_LIMIT, degeneracies
-from dgpc_cli.stages.init_mesh import MeshGrid, init_geodesic, init_project
+from dgpc_cli.stages.init_mesh import (
+    MeshGrid,
+    MeshTracing,
+    init_geodesic,
+    init_project,
+    rotated,
+)
 from dgpc_cli.stages.net_size import NetTooLarge
 
 log = logging.getLogger(__name__)
@@ -45,6 +57,12 @@ MIN_CURVE = 0.1
 COVERAGE_SLACK = 0.005
 #: Samples of the reference for the coverage of each candidate.
 COVERAGE_SAMPLES = 20_000
+#: The automatic choice's sweep of section planes, ``--angle`` in degrees (0 and 90 first: the
+#: principal axes).
+SWEEP = (0.0, 90.0, 30.0, 60.0, 120.0, 150.0)
+#: A section plane whose normal lies within this angle (degrees) of one already listed is not
+#: tried again.
+SAME_PLANE = 5.0
 
 
 @dataclass
@@ -53,6 +71,14 @@ class Candidate:
 
     label: str
     kwargs: dict
+
+    def record(self) -> dict:
+        """What the artifact records of the candidate besides its label: the base plane's
+        normal of a section, the name of a boundary curve."""
+        if "curve" in self.kwargs:
+            return {"base": self.kwargs["curve"].name}
+        d = self.kwargs.get("direction")
+        return {"direction": [float(x) for x in d]} if d is not None else {}
 
 
 @dataclass
@@ -85,8 +111,10 @@ def named_curve(mesh: ReferenceMesh, name: str) -> BoundaryCurve:
 
 
 def candidates(mesh: ReferenceMesh, method: str, *, base: str | None, direction,
-               angle: float | None) -> list[Candidate]:
-    """The candidates to try (see the module), in order of preference."""
+               angle: float | None, frame: ReferenceMesh | None = None) -> list[Candidate]:
+    """The candidates to try (see the module), in order of preference; the sweep of sections
+    turns the principal axes of ``frame`` (default: ``mesh``; ``--extend`` given: its
+    continuation, as ``--angle`` does)."""
     if method == "project":
         if angle is not None:
             return [Candidate(f"project {angle:g}°", {"direction": direction, "angle": angle})]
@@ -105,8 +133,9 @@ def candidates(mesh: ReferenceMesh, method: str, *, base: str | None, direction,
         return [Candidate(f"project {a:g}°", {"direction": direction, "angle": a})
                 for a in angles]
     if base in (None, "auto") and direction is None and angle is None:
-        out = [Candidate("section 0°", {"angle": 0.0}), Candidate("section 90°", {"angle": 90.0})]
-        return out + [Candidate(f"boundary {c.name}", {"curve": c}) for c in _curves(mesh)]
+        sections = _auto_sections(mesh, mesh if frame is None else frame)
+        return (sections[:2] + [Candidate(f"boundary {c.name}", {"curve": c})
+                                for c in _curves(mesh)] + sections[2:])
     if base == "boundary":
         curves = _curves(mesh)
         if not curves:
@@ -120,16 +149,73 @@ def candidates(mesh: ReferenceMesh, method: str, *, base: str | None, direction,
     return [Candidate(label, {"direction": direction, "angle": angle or 0.0})]
 
 
+def _auto_sections(mesh: ReferenceMesh, frame: ReferenceMesh) -> list[Candidate]:
+    """The sections the automatic choice tries (see the module), their planes' normals
+    resolved once (the sweep on ``frame``'s principal axes, the extents of ``mesh``), so that
+    the same planes cut every continuation."""
+    _, axes = principal_frame(frame.vertices, frame.faces)
+    listed: list[np.ndarray] = []
+    out = []
+
+    def add(label, d):
+        d = np.asarray(d, float) / np.linalg.norm(d)
+        if any(abs(float(d @ e)) >= np.cos(np.radians(SAME_PLANE)) for e in listed):
+            return
+        listed.append(d)
+        out.append(Candidate(label, {"direction": d.tolist(), "angle": 0.0}))
+
+    for a in SWEEP:
+        add(f"section {a:g}°", rotated(axes[:, 0], axes[:, 2], a) if a else axes[:, 0])
+    sides, _ = extent_axes(mesh.vertices)
+    add("along the longest extent", sides[:, 0])
+    add("along the second extent", sides[:, 1])
+    return out
+
+
 def _build(domain: ReferenceMesh, method: str, cand: Candidate, size: dict,
-           extend_length: float) -> MeshGrid:
+           extend_length: float, tracing: MeshTracing | None = None) -> MeshGrid:
     if method == "project":
         return init_project(domain, **cand.kwargs, **size)
     kwargs = dict(cand.kwargs)
     curve = kwargs.pop("curve", None)
     if curve is not None:
-        base = prolonged(curve.curve, domain.vertices, domain.faces, extend_length)
-        return init_geodesic(domain, base=base, base_name=curve.name, **size)
-    return init_geodesic(domain, **kwargs, **size)
+        base = prolonged(curve.curve, domain.vertices, domain.faces, extend_length,
+                         tracer=tracing.tracer if tracing is not None else None)
+        return init_geodesic(domain, base=base, base_name=curve.name, **size, tracing=tracing)
+    return init_geodesic(domain, **kwargs, **size, tracing=tracing)
+
+
+def evaluate(mesh: ReferenceMesh, domain: ReferenceMesh, method: str, cand: Candidate,
+             size: dict, extend_length: float, *, explicit: bool = False,
+             tracing: MeshTracing | None = None,
+             surface=None) -> tuple[dict, Outcome | None]:
+    """One candidate made on ``domain``, made sound and measured on ``mesh``: its record and
+    its :class:`Outcome` (None when it fails or nothing sound is left; an explicit choice's
+    DgpcError is raised). ``tracing`` (of ``domain``) and ``surface`` (the
+    ``core.reference.ReferenceSurface`` of ``mesh``) are made once when given."""
+    try:
+        grid = _build(domain, method, cand, size, extend_length, tracing)
+    except NetTooLarge:
+        raise
+    except DgpcError as err:
+        if explicit:
+            raise
+        log.info("%s: %s", cand.label, err.reason)
+        return {"candidate": cand.label, "failed": err.reason}, None
+    grid.label = cand.label
+    shape = grid.net.shape
+    fixed, note, kept = sound(grid)
+    if fixed is None:
+        log.info("%s: degenerate, no sound rectangle left (%s)", cand.label, note)
+        return {"candidate": cand.label, "shape": list(shape), "degenerate": note}, None
+    fixed.label = cand.label
+    cov = coverage(fixed.net.f, mesh.vertices, mesh.faces, samples=COVERAGE_SAMPLES,
+                   surface=surface)["area_fraction"]
+    log.info("%s: %d x %d net covers %.1f %% of the reference%s", cand.label,
+             *fixed.net.shape, 100 * cov, f" ({note})" if note else "")
+    return ({"candidate": cand.label, "shape": list(fixed.net.shape), "coverage": cov,
+             **({"shrunk_from": list(shape)} if note else {})},
+            Outcome(fixed, cov, note, kept))
 
 
 def sound(grid: MeshGrid) -> tuple[MeshGrid, str | None, float]:
@@ -176,46 +262,39 @@ def choose(mesh: ReferenceMesh, domain: ReferenceMesh, method: str, *, base: str
     size = {"rows": rows, "cols": cols, "spacing": spacing}
     cands = candidates(mesh, method, base=base, direction=direction, angle=angle)
     explicit = len(cands) == 1
-    tried, outcomes = [], []
-    for cand in cands:
-        try:
-            grid = _build(domain, method, cand, size, extend_length)
-        except NetTooLarge:
-            raise
-        except DgpcError as err:
-            if explicit:
-                raise
-            tried.append({"candidate": cand.label, "failed": err.reason})
-            log.info("%s: %s", cand.label, err.reason)
-            continue
-        grid.label = cand.label
-        shape = grid.net.shape
-        fixed, note, kept = sound(grid)
-        if fixed is None:
-            tried.append({"candidate": cand.label, "shape": list(shape),
-                          "degenerate": note})
-            outcomes.append(None)
-            log.info("%s: degenerate, no sound rectangle left (%s)", cand.label, note)
-            continue
-        cov = coverage(fixed.net.f, mesh.vertices, mesh.faces,
-                       samples=COVERAGE_SAMPLES)["area_fraction"]
-        out = Outcome(fixed, cov, note, kept)
-        outcomes.append(out)
-        tried.append({"candidate": cand.label, "shape": list(fixed.net.shape),
-                      "coverage": cov, **({"shrunk_from": list(shape)} if note else {})})
-        log.info("%s: %d x %d net covers %.1f %% of the reference%s", cand.label,
-                 *fixed.net.shape, 100 * cov, f" ({note})" if note else "")
-    good = [o for o in outcomes if o is not None]
-    if explicit and (not good or good[0].kept < MIN_KEPT):
-        _refuse(mesh, domain, method, cands[0], tried, outcomes, size, extend_length)
+    pairs = evaluate_all(mesh, domain, method, cands, size, extend_length, explicit=explicit)
+    tried = [record for record, _ in pairs]
+    good = [o for _, o in pairs if o is not None]
     if not good:
-        raise DgpcError("no base curve or direction gives a sound net on the mesh (every "
-                        "candidate folds or collapses: "
-                        + "; ".join(f"{t['candidate']}: {t.get('degenerate') or t.get('failed')}"
-                                    for t in tried) + ")", source=mesh.path)
+        raise no_sound_net(mesh, tried)
     best = max(o.coverage for o in good)
     chosen = next(o for o in good if o.coverage >= best - COVERAGE_SLACK)
     return chosen.grid, chosen, tried
+
+
+def no_sound_net(mesh: ReferenceMesh, tried: list[dict]) -> DgpcError:
+    """The error of a mesh on which no candidate gives a sound net, each one's reason."""
+    return DgpcError("no base curve or direction gives a sound net on the mesh (every "
+                     "candidate folds or collapses: "
+                     + "; ".join(f"{t['candidate']}: {t.get('degenerate') or t.get('failed')}"
+                                 for t in tried) + ")", source=mesh.path)
+
+
+def evaluate_all(mesh: ReferenceMesh, domain: ReferenceMesh, method: str,
+                 cands: list[Candidate], size: dict, extend_length: float, *,
+                 explicit: bool = False, tracing: MeshTracing | None = None,
+                 surface=None) -> list[tuple[dict, Outcome | None]]:
+    """:func:`evaluate` of each candidate; an ``explicit`` choice (one candidate) that leaves
+    no sound net, or one of less than :data:`MIN_KEPT` of its quads, is refused (DgpcError
+    naming the automatic candidate that works); ``tracing``, ``surface`` as there."""
+    if method == "geodesic" and tracing is None:
+        tracing = MeshTracing.of(domain)
+    pairs = [evaluate(mesh, domain, method, cand, size, extend_length, explicit=explicit,
+                      tracing=tracing, surface=surface) for cand in cands]
+    if explicit and (pairs[0][1] is None or pairs[0][1].kept < MIN_KEPT):
+        _refuse(mesh, domain, method, cands[0], [pairs[0][0]], [pairs[0][1]], size,
+                extend_length)
+    return pairs
 
 
 def _refuse(mesh, domain, method, cand, tried, outcomes, size, extend_length):
@@ -234,16 +313,22 @@ def _refuse(mesh, domain, method, cand, tried, outcomes, size, extend_length):
         if fixed is not None and kept >= MIN_KEPT:
             cov = coverage(fixed.net.f, mesh.vertices, mesh.faces,
                            samples=COVERAGE_SAMPLES)["area_fraction"]
-            others.append((cov, alt.label))
-    hint = (f"; {_option(max(others)[1])} gives a sound net covering {max(others)[0]:.0%}"
+            others.append((cov, -len(others), alt))
+    best = max(others, key=lambda o: o[:2]) if others else None
+    hint = (f"; {option(best[2])} gives a sound net covering {best[0]:.0%}"
             if others else "; try fewer --rows/--cols or a smaller --extend")
     raise DgpcError(f"the {cand.label} net is degenerate (folded or collapsed): {what}{hint}",
                     source=mesh.path)
 
 
-def _option(label: str) -> str:
-    """The options that pick the candidate ``label``."""
-    kind, _, arg = label.partition(" ")
+def option(cand: Candidate, by_direction: bool = False) -> str:
+    """The options that pick the candidate ``cand`` (a section by its ``--direction`` with
+    ``by_direction``: over an overhang ``--angle`` turns the principal axes of the continued
+    mesh, the search those of the mesh)."""
+    kind, _, arg = cand.label.partition(" ")
     if kind == "boundary":
         return f"--base {arg}"
-    return f"--angle {arg.rstrip('°')}"
+    if kind == "section" and arg and not by_direction:
+        return f"--angle {arg.rstrip('°')}"
+    d = cand.kwargs.get("direction")
+    return "--direction " + ",".join(f"{x:.6g}" for x in d) if d is not None else kind

@@ -159,13 +159,31 @@ class MeshGrid:
     traced: bool = True
 
 
+@dataclass
+class MeshTracing:
+    """What tracing geodesics on a mesh needs, made once for every net traced on it: the
+    geodesic tracer, the face normals, whether the mesh has a boundary and its principal frame
+    ``(centre, axes)``."""
+
+    tracer: MeshGeodesics
+    normals: np.ndarray
+    bounded: bool
+    frame: tuple[np.ndarray, np.ndarray]
+
+    @classmethod
+    def of(cls, mesh: ReferenceMesh) -> MeshTracing:
+        V, F = mesh.vertices, mesh.faces
+        return cls(MeshGeodesics(V, F), face_normals(V, F)[0], _has_boundary(F),
+                   principal_frame(V, F))
+
+
 class _Fan:
     """Geodesics shot orthogonally from a base ``curve`` on ``mesh`` (tracing state)."""
 
-    def __init__(self, mesh: ReferenceMesh, curve: SectionCurve, reach: float):
+    def __init__(self, mesh: ReferenceMesh, curve: SectionCurve, reach: float,
+                 tracing: MeshTracing):
         self.mesh, self.curve, self.reach = mesh, curve, reach
-        self.normals, _ = face_normals(mesh.vertices, mesh.faces)
-        self.tracer = MeshGeodesics(mesh.vertices, mesh.faces)
+        self.normals, self.tracer = tracing.normals, tracing.tracer
 
     def band(self, want: int | None):
         """Columns ``t0..t1`` on the base curve and the geodesic range ``[-B, A]`` of the
@@ -219,7 +237,8 @@ class _Fan:
 def init_geodesic(mesh: ReferenceMesh, *, base: SectionCurve | None = None,
                   base_name: str | None = None, direction=None, angle: float = 0.0,
                   rows: int | None = None, cols: int | None = None,
-                  spacing: float | None = None) -> MeshGrid:
+                  spacing: float | None = None,
+                  tracing: MeshTracing | None = None) -> MeshGrid:
     """A net of geodesic parallel coordinates on ``mesh`` (SPEC §5 ``--method geodesic``).
 
     Base curve: ``base`` (a boundary curve named ``base_name``, oriented with the mesh on its
@@ -232,10 +251,12 @@ def init_geodesic(mesh: ReferenceMesh, *, base: SectionCurve | None = None,
     a finer probing fan. ``rows`` default: square quads; ``cols`` default:
     :data:`DEFAULT_COLS`; ``spacing`` (model units) replaces ``cols`` (and ``rows`` when that is
     not given). On a closed mesh the geodesics are cut at the mesh's extent along the
-    direction, each side of the plane.
+    direction, each side of the plane. ``tracing``: :meth:`MeshTracing.of` the mesh, when
+    several nets are traced on it.
     """
-    V, F = mesh.vertices, mesh.faces
-    centre, axes = principal_frame(V, F)
+    V = mesh.vertices
+    tracing = MeshTracing.of(mesh) if tracing is None else tracing
+    centre, axes = tracing.frame
     record: dict = {"method": "geodesic", "centroid": centre.tolist()}
     if base is None:
         d = axes[:, 0] if direction is None else _unit(direction)
@@ -248,13 +269,13 @@ def init_geodesic(mesh: ReferenceMesh, *, base: SectionCurve | None = None,
         curve, d = base, None
         label = f"boundary {base_name}"
         record.update(base="boundary", base_name=base_name)
-    if _has_boundary(F) or d is None:
+    if tracing.bounded or d is None:
         reach = 4.0 * mesh.bbox_diagonal
     else:
         heights = (V - centre) @ d
         reach = float(max(heights.max(), -heights.min()))
         log.info("closed mesh: geodesics cut at %.6g each side of the base plane", reach)
-    fan = _Fan(mesh, curve, reach)
+    fan = _Fan(mesh, curve, reach, tracing)
     want = cols if cols is not None else (DEFAULT_COLS if spacing is None else None)
     t0, t1, A, B, probe = fan.band(want)
     record.update(base_curve_length=curve.length, base_curve_closed=curve.closed,
