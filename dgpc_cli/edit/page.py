@@ -101,6 +101,7 @@ class EditPage:
         self._push_base: tuple[np.ndarray, np.ndarray] | None = None   # (target, normal)
         self._push_timer: threading.Timer | None = None
         self._resetting = False
+        self._figures_of = None                 # the field whose colours the page shows
         f = first.f.reshape(-1, 3)
         self.scale = float(np.median(np.linalg.norm(first.f[1:] - first.f[:-1], axis=-1)))
         if reference is not None:
@@ -234,27 +235,33 @@ class EditPage:
 
     # -- frames --------------------------------------------------------------------------
     def show(self, frame) -> None:
-        """Show a frame (any thread)."""
+        """Show a frame (any thread). Only what changed is sent: the vertex positions of the
+        scene's objects always (no object is made anew), the colours, flags and texts when
+        the frame's figures are new (a drag event's quick frame keeps the last ones)."""
         with self._lock:
             self._f = frame.f
             pts = frame.f.reshape(-1, 3).astype(np.float32)
+            figures = frame.field is not self._figures_of
+            self._figures_of = frame.field
             with self.server.atomic():
                 self.mesh.vertices = pts
                 self.lines.points = geodesic_segments(frame.f).astype(np.float32)
                 self.points.points = pts
-                self.points.colors = field_colours(frame.field, self.limit)
                 flagged = (frame.pleated | frame.creased).reshape(-1)
+                if figures:
+                    self.points.colors = field_colours(frame.field, self.limit)
                 if flagged.any():
                     self.flags.points = pts[flagged]
-                    self.flags.visible = True
-                else:
-                    self.flags.visible = False
+                if figures:
+                    self.flags.visible = bool(flagged.any())
+                    self.figures.content = _field_markdown(frame, self.limit)
                 self._sync_gizmos(frame)
-                self.status.content = _status_markdown(frame)
-                self.figures.content = _field_markdown(frame, self.limit)
+                status = _status_markdown(frame)
+                if status != self.status.content:
+                    self.status.content = status
                 if frame.fabrication is not None:
                     self.fabrication.content = _fabrication_markdown(frame.fabrication)
-                elif not frame.settled:
+                elif not frame.settled and self.fabrication.content:
                     self.fabrication.content = ""
             if self.selected is not None:
                 self.select(self.selected)
@@ -280,7 +287,10 @@ class EditPage:
         self.saved.content = text
 
     def stop(self) -> None:
-        self.server.stop()
+        banner = io.StringIO()
+        with contextlib.redirect_stdout(banner):     # viser says it stopped: stdout is data
+            self.server.stop()
+        log.debug("%s", banner.getvalue())
 
 
 def _url_host(host: str) -> str:

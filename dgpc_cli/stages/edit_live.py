@@ -17,6 +17,10 @@ from dgpc_cli.stages.edit_session import EditSession, Frame, Superseded
 
 log = logging.getLogger(__name__)
 
+#: Seconds a drag must rest (no request waiting) before its net's colours, flags and status
+#: are worked out anew: while the handle moves every event shows the net alone, at once.
+REFRESH_IDLE = 0.15
+
 
 @dataclass
 class Request:
@@ -139,6 +143,8 @@ class LiveSolver:
             self._answer(Answer(request, s.quick_frame(), time.perf_counter() - request.arrived,
                                 error))
             with self._cond:
+                if not self._queue and not self._stop:
+                    self._cond.wait(REFRESH_IDLE)
                 waiting = bool(self._queue)
             if not waiting:
                 self._answer(Answer(request, s.frame(), time.perf_counter() - request.arrived,
