@@ -113,13 +113,16 @@ class EditPage:
                                                       color=SURFACE, side="double",
                                                       cast_shadow=False, receive_shadow=False)
         self.mesh.on_click(self._clicked)
+        # the lines and points are no children of the clickable net: the page's hit test takes
+        # a point within a world unit of the ray, and a click handler above the points would
+        # take the press meant for a gizmo's arrow in front of them
         self.lines = self.server.scene.add_line_segments(
-            "/net/geodesics", geodesic_segments(first.f), colors=GEODESICS, line_width=2.0)
+            "/geodesics", geodesic_segments(first.f), colors=GEODESICS, line_width=2.0)
         self.points = self.server.scene.add_point_cloud(
-            "/net/field", f, colors=field_colours(first.field, max_strain),
+            "/field", f, colors=field_colours(first.field, max_strain),
             point_size=0.2 * self.scale, point_shape="circle")
         self.flags = self.server.scene.add_point_cloud(
-            "/net/flags", np.zeros((1, 3)), colors=FLAGGED, point_size=0.8 * self.scale,
+            "/flags", np.zeros((1, 3)), colors=FLAGGED, point_size=0.8 * self.scale,
             point_shape="diamond", visible=False)
         self.marker = self.server.scene.add_icosphere(
             "/selected", radius=0.3 * self.scale, color=SELECTED, visible=False)
