@@ -5,7 +5,9 @@ opens), then the fourth dragged to its target in 40 moves 40 ms apart and releas
 
 Prints, per size and per way of running a drag event, the median and largest latency from a
 drag event's arrival to its net's data sent to the page (server side; events a newer one
-superseded before they ran are counted apart), the numeric factorizations per event shown,
+superseded before they ran are counted apart), the solver thread's CPU time per event shown
+(its cost on an idle core: the machine's load does not inflate it), the numeric
+factorizations per event shown,
 and the seconds from the release to the settled net (``optimize``'s run). The ways:
 ``factorize`` one guided-projection iteration per event (a new factorization each: what a
 drag event cost before predictor steps), ``predictor`` the page's way (an iteration every
@@ -99,26 +101,31 @@ def main() -> None:
     print(f"dgpc edit: latency of a drag, event to the net's data sent to the page (server "
           f"side); load average {load:.2f} on {os.cpu_count()} cores")
     print(f"{'net':>7}  {'events':>15}  {'shown':>5}  {'factorizations':>20}  {'median ms':>9}  "
-          f"{'max ms':>7}  {'target ms':>9}  {'release→settled s':>17}  state")
+          f"{'max ms':>7}  {'cpu ms':>7}  {'target ms':>9}  {'release→settled s':>17}  state")
     for (m, n), target in SIZES.items():
         with tempfile.TemporaryDirectory() as tmp:
             d = Path(tmp)
             net, held, drags = _drags(d, m, n)
-            medians = {}
+            medians, cpus = {}, {}
             for way, refactor in (("factorize", 1), ("predictor", edit_session.REFACTOR)):
                 log = run(d, net, held, drags, refactor)
                 drag = [e for e in log["events"] if e["action"] == "drag"]
                 shown = [e for e in drag if "shown" in e]
                 ms = [1000 * e["shown"] for e in shown]
                 medians[way] = statistics.median(ms)
+                cpu = statistics.median(1000 * e["cpu"] for e in shown)
+                cpus[way] = cpu
                 settle = log["settles"][-1] if log["settles"] else {"seconds": float("nan"),
                                                                     "state": "-"}
                 print(f"{m:>3}×{n:<3}  {len(drag):>3} {way:>11}  {len(shown):>5}  "
                       f"{''.join(str(e['factorizations']) for e in shown):>20}  "
-                      f"{medians[way]:>9.1f}  {max(ms):>7.1f}  {1000 * target:>9.0f}  "
+                      f"{medians[way]:>9.1f}  {max(ms):>7.1f}  {cpu:>7.1f}  {1000 * target:>9.0f}  "
                       f"{settle['seconds']:>17.2f}  {settle['state']}")
-            print(f"{m:>3}×{n:<3}  median latency, predictor / factorize: "
-                  f"{medians['predictor'] / medians['factorize']:.2f}")
+            print(f"{m:>3}×{n:<3}  predictor / factorize: median latency "
+                  f"{medians['predictor'] / medians['factorize']:.2f}, median CPU "
+                  f"{cpus['predictor'] / cpus['factorize']:.2f}")
+    print(f"load average {os.getloadavg()[0]:.2f} at the end; cpu ms: the solver thread's own "
+          "CPU time per event shown (median), what it costs on an idle core")
 
 
 if __name__ == "__main__":

@@ -36,16 +36,18 @@ def replay(session: EditSession, events: list[DragEvent], output: Path,
     shown) or ``superseded``, the guided-projection iterations and factorizations run, the
     state shown; per settling run the seconds from the drag's end to the settled net. With
     ``show`` (a page's ``show``), every frame is also handed to it, and ``shown`` logs the
-    seconds from the event's arrival to the frame's data sent to the page."""
+    seconds from the event's arrival to the frame's data sent to the page; ``cpu`` the solver
+    thread's CPU seconds from taking the event up to that point (its cost without the wait
+    for a loaded machine's cores)."""
     session.settle()                 # the page, too, opens on the settled net
-    answers: list[tuple[Answer, float | None]] = []
+    answers: list[tuple[Answer, float | None, float]] = []
 
     def on_frame(answer: Answer) -> None:
         shown = None
         if show is not None and answer.frame is not None:
             show(answer.frame)
             shown = time.perf_counter() - answer.request.arrived
-        answers.append((answer, shown))
+        answers.append((answer, shown, time.thread_time() - answer.request.cpu))
 
     solver = LiveSolver(session, on_frame)
     t0 = time.perf_counter()
@@ -60,7 +62,7 @@ def replay(session: EditSession, events: list[DragEvent], output: Path,
         solver.close()
     outcome = session.save(output, handles_path)
     records, settles = [], []
-    for a, shown in answers:
+    for a, shown, cpu in answers:
         if a.refresh:
             continue
         if a.request.action == "settle":
@@ -76,6 +78,7 @@ def replay(session: EditSession, events: list[DragEvent], output: Path,
                        factorizations=a.frame.factorizations, state=a.frame.state)
             if shown is not None:
                 rec["shown"] = shown
+            rec["cpu"] = cpu
         if a.error:
             rec["error"] = a.error
         records.append(rec)
