@@ -57,10 +57,18 @@ def js(browser, expression: str):
 def shot(browser, path: Path) -> np.ndarray:
     """A screenshot once the scene is drawn anew (software WebGL paints slowly; a mouse move
     in a corner asks for a frame)."""
-    for k in range(3):
+    for k in range(8):
         browser.call("Input.dispatchMouseEvent", type="mouseMoved", x=20 + k, y=HEIGHT - 20)
         time.sleep(2)
     return pixels(browser.screenshot(path))
+
+
+def click(browser, x: float, y: float) -> None:
+    browser.call("Input.dispatchMouseEvent", type="mouseMoved", x=x, y=y)
+    browser.call("Input.dispatchMouseEvent", type="mousePressed", x=x, y=y, button="left",
+                 buttons=1, clickCount=1)
+    browser.call("Input.dispatchMouseEvent", type="mouseReleased", x=x, y=y, button="left",
+                 buttons=0, clickCount=1)
 
 
 def main() -> None:
@@ -75,12 +83,18 @@ def main() -> None:
     try:
         with Browser(width=WIDTH, height=HEIGHT) as b:
             b.open(url)
+            print("page", url, flush=True)
             b.wait_text("converged", 600)
+            print("settled", flush=True)
             time.sleep(3)
             # the notice about software WebGL is about this headless browser, not the page
             js(b, "[...document.querySelectorAll('button')].filter(x => x.closest("
                   "'.mantine-Notification-root')).forEach(x => x.click())")
-            js(b, "document.querySelector('input[type=checkbox]').click()")
+            box = js(b, "(() => { const r = [...document.querySelectorAll('input[type=checkbox]')]"
+                        ".map(x => x.getBoundingClientRect()).find(r => r.width > 0); "
+                        "return [r.left + r.width / 2, r.top + r.height / 2]; })()")
+            click(b, *box["result"]["value"])
+            print("fabrication figures on", flush=True)
             b.wait_text("Strips", 600)
             first = status(b)
             im = shot(b, ROOT / "docs" / "edit-page.png")
@@ -99,7 +113,7 @@ def main() -> None:
             after = settled(b, first)
             b.wait_text("Strips", 600)
             shot(b, ROOT / "docs" / "edit-drag.png")
-            print("after the drag:", after)
+            print("after the drag:", after, flush=True)
 
             # click the middle of the net, push it along the normal by 0.8 edge lengths
             c = js(b, "(() => { const t = document.querySelector('[role=slider]'); const r = "
@@ -110,11 +124,7 @@ def main() -> None:
             grey = np.nonzero((np.abs(im[..., 0] - im[..., 1]) < 12) & (im[..., 0] < 200)
                               & (im[..., 0] > 60) & (np.arange(WIDTH)[None, :] < 0.68 * WIDTH))
             before = status(b)
-            b.call("Input.dispatchMouseEvent", type="mouseMoved", x=float(np.median(grey[1])),
-                   y=float(np.median(grey[0])))
-            for kind in ("mousePressed", "mouseReleased"):
-                b.call("Input.dispatchMouseEvent", type=kind, x=float(np.median(grey[1])),
-                       y=float(np.median(grey[0])), button="left", buttons=1, clickCount=1)
+            click(b, float(np.median(grey[1])), float(np.median(grey[0])))
             b.wait_text("): a handle.", 300)
             before = settled(b, before)
             cx, cy = x + w / 2, y + h / 2
