@@ -1,17 +1,23 @@
-"""``make bench``: ``dgpc edit`` latency, through ``--replay`` (the page's solver thread
-without a page): the demo wall's handle pattern at 21×13 and 41×41, three handles placed and
-the fourth held where it starts (the net settled, as the page opens), then the fourth dragged to
-its target in 20 moves 40 ms apart and released.
+"""``make bench``: ``dgpc edit`` latency, by the replay's code path (the page's solver thread)
+with the page's server running (no browser): the demo wall's handle pattern at 21×13 and
+41×41, three handles placed and the fourth held where it starts (the net settled, as the page
+opens), then the fourth dragged to its target in 40 moves 40 ms apart and released.
 
-Prints, per size, the median and largest latency from a drag event to the updated net and its
-figures (server side; events a newer one superseded before they ran are counted apart), and
-the seconds from the release to the settled net (``optimize``'s run). Targets: ≤ 50 ms at
-21×13, ≤ 200 ms at 41×41.
+Prints, per size and per way of running a drag event, the median and largest latency from a
+drag event's arrival to its net's data sent to the page (server side; events a newer one
+superseded before they ran are counted apart), the solver thread's CPU time per event shown
+(its cost on an idle core: the machine's load does not inflate it), the numeric
+factorizations per event shown,
+and the seconds from the release to the settled net (``optimize``'s run). The ways:
+``factorize`` one guided-projection iteration per event (a new factorization each: what a
+drag event cost before predictor steps), ``predictor`` the page's way (an iteration every
+``REFACTOR`` events, predictor steps between). Targets: ≤ 50 ms at 21×13, ≤ 200 ms at 41×41.
 """
 
 from __future__ import annotations
 
 import json
+import os
 import statistics
 import subprocess
 import sys
@@ -24,8 +30,16 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "samples"))
 import generate  # noqa: E402
 
+from dgpc_cli.edit.page import EditPage  # noqa: E402
+from dgpc_cli.io.drags import read_drags  # noqa: E402
+from dgpc_cli.io.handles import read_handles  # noqa: E402
+from dgpc_cli.stages import edit_session  # noqa: E402
+from dgpc_cli.stages.edit_replay import replay  # noqa: E402
+from dgpc_cli.stages.modes import mode_weights  # noqa: E402
+from dgpc_cli.stages.optimize_artifact import OptimizeSettings, prepare_optimize  # noqa: E402
+
 SIZES = {(21, 13): 0.050, (41, 41): 0.200}
-MOVES, PERIOD = 20, 0.04
+MOVES, PERIOD = 40, 0.04
 
 
 def _drags(d: Path, m: int, n: int) -> tuple[Path, Path]:
@@ -55,25 +69,63 @@ def _drags(d: Path, m: int, n: int) -> tuple[Path, Path]:
     return net, held, path
 
 
+class _NoGestures:
+    """The page's gestures go nowhere: the drags come from the replay."""
+
+    def __getattr__(self, name):
+        return lambda *args: None
+
+
+def run(d: Path, net: Path, held: Path, drags: Path, refactor: int) -> dict:
+    """One replay of ``drags`` on a fresh session with a page; its log."""
+    settings = OptimizeSettings("isometric", mode_weights("isometric"), steps=5)
+    prepared = prepare_optimize(net, settings)
+    ids, targets = read_handles(held, prepared.net.shape, prepared.net.f_mm, scale=prepared.mm)
+    session = edit_session.EditSession(prepared, {int(i): tuple(float(c) for c in t / prepared.mm)
+                                                  for i, t in zip(ids, targets, strict=True)})
+    page = EditPage(session.frame(), _NoGestures(), host="127.0.0.1", port=0, title="bench",
+                    max_strain=settings.max_strain)
+    saved = edit_session.REFACTOR
+    edit_session.REFACTOR = refactor
+    try:
+        _, log = replay(session, read_drags(drags, prepared.net.shape), d / f"out{refactor}",
+                        show=page.show)
+    finally:
+        edit_session.REFACTOR = saved
+        page.stop()
+    return log
+
+
 def main() -> None:
-    print("dgpc edit --replay: latency of a drag (server side)")
-    print(f"{'net':>7}  {'events':>6}  {'shown':>5}  {'median ms':>9}  {'max ms':>7}  "
-          f"{'target ms':>9}  {'release→settled s':>17}  state")
+    load = os.getloadavg()[0]
+    print(f"dgpc edit: latency of a drag, event to the net's data sent to the page (server "
+          f"side); load average {load:.2f} on {os.cpu_count()} cores")
+    print(f"{'net':>7}  {'events':>15}  {'shown':>5}  {'factorizations':>20}  {'median ms':>9}  "
+          f"{'max ms':>7}  {'cpu ms':>7}  {'target ms':>9}  {'release→settled s':>17}  state")
     for (m, n), target in SIZES.items():
         with tempfile.TemporaryDirectory() as tmp:
             d = Path(tmp)
             net, held, drags = _drags(d, m, n)
-            subprocess.run([sys.executable, "-m", "dgpc_cli.cli.main", "-q", "edit", str(net),
-                            "--handles", str(held), "--replay", str(drags), "--steps", "5",
-                            "-o", str(d / "out")], capture_output=True)
-            log = json.loads((d / "out-replay.json").read_text())
-            drag = [e for e in log["events"] if e["action"] == "drag"]
-            shown = [e["latency"] for e in drag if "latency" in e]
-            settle = log["settles"][-1] if log["settles"] else {"seconds": float("nan"),
-                                                                "state": "-"}
-            print(f"{m:>3}×{n:<3}  {len(drag):>6}  {len(shown):>5}  "
-                  f"{1000 * statistics.median(shown):>9.1f}  {1000 * max(shown):>7.1f}  "
-                  f"{1000 * target:>9.0f}  {settle['seconds']:>17.2f}  {settle['state']}")
+            medians, cpus = {}, {}
+            for way, refactor in (("factorize", 1), ("predictor", edit_session.REFACTOR)):
+                log = run(d, net, held, drags, refactor)
+                drag = [e for e in log["events"] if e["action"] == "drag"]
+                shown = [e for e in drag if "shown" in e]
+                ms = [1000 * e["shown"] for e in shown]
+                medians[way] = statistics.median(ms)
+                cpu = statistics.median(1000 * e["cpu"] for e in shown)
+                cpus[way] = cpu
+                settle = log["settles"][-1] if log["settles"] else {"seconds": float("nan"),
+                                                                    "state": "-"}
+                print(f"{m:>3}×{n:<3}  {len(drag):>3} {way:>11}  {len(shown):>5}  "
+                      f"{''.join(str(e['factorizations']) for e in shown):>20}  "
+                      f"{medians[way]:>9.1f}  {max(ms):>7.1f}  {cpu:>7.1f}  {1000 * target:>9.0f}  "
+                      f"{settle['seconds']:>17.2f}  {settle['state']}")
+            print(f"{m:>3}×{n:<3}  predictor / factorize: median latency "
+                  f"{medians['predictor'] / medians['factorize']:.2f}, median CPU "
+                  f"{cpus['predictor'] / cpus['factorize']:.2f}")
+    print(f"load average {os.getloadavg()[0]:.2f} at the end; cpu ms: the solver thread's own "
+          "CPU time per event shown (median), what it costs on an idle core")
 
 
 if __name__ == "__main__":

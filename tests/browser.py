@@ -34,12 +34,12 @@ def chromium_path() -> str:
 class Browser:
     """One headless Chromium with a fresh profile and one page; use as a context manager."""
 
-    def __init__(self, timeout: float = 120.0):
+    def __init__(self, timeout: float = 120.0, width: int = WIDTH, height: int = HEIGHT):
         self.timeout = timeout
         self.profile = tempfile.mkdtemp(prefix="chromium-profile-")
         self.proc = subprocess.Popen(
             [chromium_path(), *FLAGS, f"--user-data-dir={self.profile}",
-             "--remote-debugging-port=0", f"--window-size={WIDTH},{HEIGHT}", "about:blank"],
+             "--remote-debugging-port=0", f"--window-size={width},{height}", "about:blank"],
             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         port_file = Path(self.profile) / "DevToolsActivePort"
         end = time.monotonic() + timeout
@@ -55,7 +55,7 @@ class Browser:
                           open_timeout=timeout)
         self._ids = itertools.count(1)
         self.call("Page.enable")
-        self.call("Emulation.setDeviceMetricsOverride", width=WIDTH, height=HEIGHT,
+        self.call("Emulation.setDeviceMetricsOverride", width=width, height=height,
                   deviceScaleFactor=1, mobile=False)
 
     def call(self, method: str, **params):

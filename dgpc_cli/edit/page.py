@@ -101,6 +101,7 @@ class EditPage:
         self._push_base: tuple[np.ndarray, np.ndarray] | None = None   # (target, normal)
         self._push_timer: threading.Timer | None = None
         self._resetting = False
+        self._figures_of = None                 # the field whose colours the page shows
         f = first.f.reshape(-1, 3)
         self.scale = float(np.median(np.linalg.norm(first.f[1:] - first.f[:-1], axis=-1)))
         if reference is not None:
@@ -112,13 +113,16 @@ class EditPage:
                                                       color=SURFACE, side="double",
                                                       cast_shadow=False, receive_shadow=False)
         self.mesh.on_click(self._clicked)
+        # the lines and points are no children of the clickable net: the page's hit test takes
+        # a point within a world unit of the ray, and a click handler above the points would
+        # take the press meant for a gizmo's arrow in front of them
         self.lines = self.server.scene.add_line_segments(
-            "/net/geodesics", geodesic_segments(first.f), colors=GEODESICS, line_width=2.0)
+            "/geodesics", geodesic_segments(first.f), colors=GEODESICS, line_width=2.0)
         self.points = self.server.scene.add_point_cloud(
-            "/net/field", f, colors=field_colours(first.field, max_strain),
+            "/field", f, colors=field_colours(first.field, max_strain),
             point_size=0.2 * self.scale, point_shape="circle")
         self.flags = self.server.scene.add_point_cloud(
-            "/net/flags", np.zeros((1, 3)), colors=FLAGGED, point_size=0.8 * self.scale,
+            "/flags", np.zeros((1, 3)), colors=FLAGGED, point_size=0.8 * self.scale,
             point_shape="diamond", visible=False)
         self.marker = self.server.scene.add_icosphere(
             "/selected", radius=0.3 * self.scale, color=SELECTED, visible=False)
@@ -234,27 +238,33 @@ class EditPage:
 
     # -- frames --------------------------------------------------------------------------
     def show(self, frame) -> None:
-        """Show a frame (any thread)."""
+        """Show a frame (any thread). Only what changed is sent: the vertex positions of the
+        scene's objects always (no object is made anew), the colours, flags and texts when
+        the frame's figures are new (a drag event's quick frame keeps the last ones)."""
         with self._lock:
             self._f = frame.f
             pts = frame.f.reshape(-1, 3).astype(np.float32)
+            figures = frame.field is not self._figures_of
+            self._figures_of = frame.field
             with self.server.atomic():
                 self.mesh.vertices = pts
                 self.lines.points = geodesic_segments(frame.f).astype(np.float32)
                 self.points.points = pts
-                self.points.colors = field_colours(frame.field, self.limit)
                 flagged = (frame.pleated | frame.creased).reshape(-1)
+                if figures:
+                    self.points.colors = field_colours(frame.field, self.limit)
                 if flagged.any():
                     self.flags.points = pts[flagged]
-                    self.flags.visible = True
-                else:
-                    self.flags.visible = False
+                if figures:
+                    self.flags.visible = bool(flagged.any())
+                    self.figures.content = _field_markdown(frame, self.limit)
                 self._sync_gizmos(frame)
-                self.status.content = _status_markdown(frame)
-                self.figures.content = _field_markdown(frame, self.limit)
+                status = _status_markdown(frame)
+                if status != self.status.content:
+                    self.status.content = status
                 if frame.fabrication is not None:
                     self.fabrication.content = _fabrication_markdown(frame.fabrication)
-                elif not frame.settled:
+                elif not frame.settled and self.fabrication.content:
                     self.fabrication.content = ""
             if self.selected is not None:
                 self.select(self.selected)
@@ -280,7 +290,10 @@ class EditPage:
         self.saved.content = text
 
     def stop(self) -> None:
-        self.server.stop()
+        banner = io.StringIO()
+        with contextlib.redirect_stdout(banner):     # viser says it stopped: stdout is data
+            self.server.stop()
+        log.debug("%s", banner.getvalue())
 
 
 def _url_host(host: str) -> str:

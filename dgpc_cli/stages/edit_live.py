@@ -17,6 +17,10 @@ from dgpc_cli.stages.edit_session import EditSession, Frame, Superseded
 
 log = logging.getLogger(__name__)
 
+#: Seconds a drag must rest (no request waiting) before its net's colours, flags and status
+#: are worked out anew: while the handle moves every event shows the net alone, at once.
+REFRESH_IDLE = 0.15
+
 
 @dataclass
 class Request:
@@ -28,6 +32,9 @@ class Request:
     end: bool = False
     arrived: float = field(default_factory=time.perf_counter)
     tag: object = None                    # the caller's id of the request (replay: the event)
+    #: CPU seconds of the solver thread when it took the request up (its own cost, whatever
+    #: else the machine runs, is ``time.thread_time()`` minus this).
+    cpu: float = 0.0
 
 
 @dataclass
@@ -112,6 +119,7 @@ class LiveSolver:
                     self._cond.notify_all()
 
     def _serve(self, request: Request) -> None:
+        request.cpu = time.thread_time()
         s = self.session
         error = None
         try:
@@ -139,6 +147,8 @@ class LiveSolver:
             self._answer(Answer(request, s.quick_frame(), time.perf_counter() - request.arrived,
                                 error))
             with self._cond:
+                if not self._queue and not self._stop:
+                    self._cond.wait(REFRESH_IDLE)
                 waiting = bool(self._queue)
             if not waiting:
                 self._answer(Answer(request, s.frame(), time.perf_counter() - request.arrived,

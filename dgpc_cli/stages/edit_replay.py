@@ -5,12 +5,13 @@ from __future__ import annotations
 
 import json
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.drags import DragEvent
 from dgpc_cli.stages.edit_live import Answer, LiveSolver, Request
-from dgpc_cli.stages.edit_session import EditSession
+from dgpc_cli.stages.edit_session import EditSession, Frame
 from dgpc_cli.stages.optimize import OptimizeOutcome
 
 #: Seconds a replay waits for the solver after its last event, at most.
@@ -26,16 +27,29 @@ def event_request(event: DragEvent, tag) -> Request:
 
 
 def replay(session: EditSession, events: list[DragEvent], output: Path,
-           handles_path: Path | None = None) -> tuple[OptimizeOutcome, dict]:
+           handles_path: Path | None = None,
+           show: Callable[[Frame], None] | None = None) -> tuple[OptimizeOutcome, dict]:
     """Settle the session's handles, then feed ``events`` (their times counted from there) to a
     :class:`LiveSolver` on ``session`` at their recorded times, let the
     net settle, save the artifact and the handles file (see :meth:`EditSession.save`). Returns
     the outcome and the log: per event its latency (seconds from its arrival to the net
-    shown) or ``superseded``, the iterations run, the state shown; per settling run the
-    seconds from the drag's end to the settled net."""
+    shown) or ``superseded``, the guided-projection iterations and factorizations run, the
+    state shown; per settling run the seconds from the drag's end to the settled net. With
+    ``show`` (a page's ``show``), every frame is also handed to it, and ``shown`` logs the
+    seconds from the event's arrival to the frame's data sent to the page; ``cpu`` the solver
+    thread's CPU seconds from taking the event up to that point (its cost without the wait
+    for a loaded machine's cores)."""
     session.settle()                 # the page, too, opens on the settled net
-    answers: list[Answer] = []
-    solver = LiveSolver(session, answers.append)
+    answers: list[tuple[Answer, float | None, float]] = []
+
+    def on_frame(answer: Answer) -> None:
+        shown = None
+        if show is not None and answer.frame is not None:
+            show(answer.frame)
+            shown = time.perf_counter() - answer.request.arrived
+        answers.append((answer, shown, time.thread_time() - answer.request.cpu))
+
+    solver = LiveSolver(session, on_frame)
     t0 = time.perf_counter()
     try:
         for k, event in enumerate(events):
@@ -48,7 +62,7 @@ def replay(session: EditSession, events: list[DragEvent], output: Path,
         solver.close()
     outcome = session.save(output, handles_path)
     records, settles = [], []
-    for a in answers:
+    for a, shown, cpu in answers:
         if a.refresh:
             continue
         if a.request.action == "settle":
@@ -60,7 +74,11 @@ def replay(session: EditSession, events: list[DragEvent], output: Path,
         if a.frame is None:
             rec["superseded"] = True
         else:
-            rec.update(latency=a.latency, iterations=a.frame.iterations, state=a.frame.state)
+            rec.update(latency=a.latency, iterations=a.frame.iterations,
+                       factorizations=a.frame.factorizations, state=a.frame.state)
+            if shown is not None:
+                rec["shown"] = shown
+            rec["cpu"] = cpu
         if a.error:
             rec["error"] = a.error
         records.append(rec)

@@ -91,13 +91,26 @@ class SolverResult:
         return float(np.median(times)) if times else 0.0
 
 
+@dataclass
+class Linearization:
+    """The point ``x`` whose normal matrix the workspace's solver holds factorized, with the
+    terms, weights, residuals and Jacobians there (what :func:`predictor_step` re-solves)."""
+
+    x: np.ndarray
+    terms: list
+    weights: list
+    phis: list
+    jacs: list
+
+
 class _Workspace:
     """Pattern and linear solver kept across runs on the same net (handle steps)."""
 
     def __init__(self, rows, cols, n_rows, size, backend):
         self.pattern = NormalMatrix(rows, cols, n_rows, size)
         self.solver = make_solver(self.pattern, backend)
-        self.factored = False        # the solver holds a numeric factorization
+        #: What the solver's numeric factorization was made at (None: no valid one).
+        self.linearization: Linearization | None = None
 
 
 def _evaluate(terms, x):
@@ -144,7 +157,6 @@ def guided_projection(
     retract: Callable | None = None,
     callback: Callable | None = None,
     halt: Callable[[np.ndarray], str | None] | None = None,
-    reuse_factorization: bool = False,
 ) -> SolverResult:
     """Run guided projection from ``x0`` until R ≤ ``tol``, stagnation, or ``max_iter``.
 
@@ -181,13 +193,10 @@ def guided_projection(
         reached, unless it converged there; a reason ends the run there as ``halted`` (a caller
         that would reject where the run is heading saves the rest of its iterations). Points
         of the watchdog's non-monotone steps are not judged: the run may still come back.
-    reuse_factorization : bool
-        Solve with the factorization ``workspace`` holds from an earlier run instead of a new
-        one (a chord step: the normal matrix of a nearby point; the step is still accepted
-        only where the objective falls). For a live drag, where one factorization per mouse
-        event is more than the event can wait for; never for a converging run.
     """
     x = np.array(x0, dtype=float)
+    if workspace is not None:
+        workspace.linearization = None            # only this run's factorizations count
     history: list[dict] = []
     objective: list[float] = []
     status, message = "max_iter", f"iteration limit {max_iter} reached"
@@ -247,15 +256,14 @@ def guided_projection(
             workspace = _Workspace(rows, cols, phi.size, x.size, backend)
         pattern = workspace.pattern
         solver = workspace.solver
-        if not (reuse_factorization and workspace.factored):
-            try:
-                solver.factorize(pattern.values(vals, row_w, mu))
-            except Exception:  # noqa: BLE001 - numerically singular at a tiny ε²: damp more
-                workspace.factored = False
-                mu *= 100.0
-                k += 1
-                continue
-            workspace.factored = True
+        try:
+            solver.factorize(pattern.values(vals, row_w, mu))
+        except Exception:  # noqa: BLE001 - numerically singular at a tiny ε²: damp more
+            workspace.linearization = None
+            mu *= 100.0
+            k += 1
+            continue
+        workspace.linearization = Linearization(x, list(terms), weights, phis, jacs)
         dx = solver.solve(-pattern.gradient(vals, row_w, phi))
         if retract is not None:
             dx = retract(x + dx) - x
@@ -291,3 +299,54 @@ def guided_projection(
     return SolverResult(x=x, status=status, message=message, iterations=k, R=R,
                         residuals=residuals, history=history, workspace=workspace,
                         backend=type(workspace.solver).name if workspace else "")
+
+
+@dataclass
+class PredictorStep:
+    """Outcome of :func:`predictor_step`: the point reached, and whether it is taken (the
+    objective fell below its value at the linearization with the new terms)."""
+
+    x: np.ndarray
+    accepted: bool
+    objective: float
+    R: float
+
+
+@blas_on_one_thread
+def predictor_step(terms: list[Term], workspace: _Workspace,
+                   retract: Callable | None = None) -> PredictorStep | None:
+    """The step of the last factorized iteration re-solved for changed terms, with no new
+    factorization: one back-substitution (Euler predictor of a continuation in the terms'
+    data, e.g. a dragged handle's target; Allgower and Georg 1990, §2.2).
+
+    The normal equations at the workspace's linearization point x_k stay as they were (the
+    terms that changed, found by their functions, must keep their Jacobian there: e.g. the
+    handles, linear in x); only the gradient ``JᵀWφ`` is made anew with the changed terms'
+    residuals at x_k, so the result is the Gauss–Newton step from x_k that the new data asks
+    for. Stiff nonlinear terms forbid the cheaper chord step from the current point with the
+    old matrix: their rotated Jacobian makes the old matrix no model of the new one. The step
+    is taken where the objective falls, as :func:`guided_projection` takes a step. None when
+    the workspace holds no factorization of these terms (other terms changed too, or their
+    pattern).
+    """
+    lin = workspace.linearization if workspace is not None else None
+    if lin is None or len(lin.terms) != len(terms) or any(
+            a.name != b.name for a, b in zip(lin.terms, terms, strict=True)):
+        return None
+    phis, jacs = list(lin.phis), list(lin.jacs)
+    for i, (old, new) in enumerate(zip(lin.terms, terms, strict=True)):
+        if new.func is not old.func:
+            phis[i], jacs[i] = new.func(lin.x)
+    rows, cols, vals = _stack(jacs, phis)
+    if not workspace.pattern.same_pattern(rows, cols):
+        return None
+    row_w = np.repeat(np.asarray(lin.weights, dtype=float), [p.size for p in phis])
+    base = _objective(lin.weights, phis)
+    dx = workspace.solver.solve(-workspace.pattern.gradient(vals, row_w, np.concatenate(phis)))
+    x = lin.x + dx
+    if retract is not None:
+        x = retract(x)
+    trial, _ = _evaluate(terms, x)
+    obj = _objective(lin.weights, trial)
+    accepted = bool(np.isfinite(obj) and obj < base)
+    return PredictorStep(x=x, accepted=accepted, objective=obj, R=_norm(terms, trial, True))
