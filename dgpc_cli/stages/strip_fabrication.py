@@ -31,9 +31,9 @@ def fabrication_warnings(fab: dict) -> list[str]:
     out = []
     gap, ratio = fab["max_end_gap"], fab["area_ratio"]
     if gap is not None and gap == gap and gap > END_GAP_WARN:
-        worst = max(fab["per_strip"], key=lambda i: max(abs(g) for g in
-                                                        fab["per_strip"][i]["end_gaps"]
-                                                        if g is not None))
+        # a strip dropped by the trim (wholly beyond the outline) has no end gaps
+        worst = max(fab["per_strip"], key=lambda i: max(
+            (abs(g) for g in fab["per_strip"][i]["end_gaps"] if g is not None), default=-1.0))
         out.append(f"strips end up to {gap:.4g} mm from the net's edge rows ({worst}): built "
                    "as cut, the design has gaps along its edges")
     if ratio is not None and abs(ratio - 1.0) > AREA_WARN:
