@@ -60,6 +60,7 @@ bench: setup ## Solver speed beside plain spsolve, whole commands, iterations, s
 	$(BIN)/python benchmarks/command_bench.py
 	$(BIN)/python benchmarks/batch_bench.py
 	$(BIN)/python benchmarks/edit_bench.py
+	$(BIN)/python benchmarks/roof_bench.py
 
 # Pipelines of the paper's applications (pipelines/*.mk): make pipeline-NAME, into $(OUT)/NAME/.
 include pipelines/_common.mk

@@ -43,6 +43,14 @@ def _bound(name, layout, rng):
         frozen = FrozenReference(layout.n_vertices, rng)
         rim = np.array([0, 1, 2, layout.n - 1, layout.n_vertices - 1])
         return lambda x: TERMS[name](x, layout, frozen, rim)
+    if name == "rim":
+        # start vertices and directions such that some rim rows are drawn in, some not
+        ids = np.array([0, 1, 2, layout.n - 1, layout.n_vertices - 1])
+        start = rng.standard_normal((len(ids), 3))
+        outward = rng.standard_normal((len(ids), 3))
+        outward /= np.linalg.norm(outward, axis=1, keepdims=True)
+        slack = np.array([0.0, 0.1, 0.0, 2.0, 0.0])
+        return lambda x: TERMS[name](x, layout, ids, start, outward, slack)
     return lambda x: TERMS[name](x, layout)
 
 

@@ -7,12 +7,13 @@ that scale and the data of the data-bound terms (isometry lengths, handles, refe
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from dgpc_cli.core.constraints import TERMS
 from dgpc_cli.core.constraints.isometry import isometry_data
+from dgpc_cli.core.constraints.rim import rim_directions
 from dgpc_cli.core.layout import NetLayout
 from dgpc_cli.core.solver import Schedule, Term
 
@@ -56,7 +57,10 @@ class Problem:
         Net vertices kept on the reference's boundary by the ``boundary`` term.
     f_start : (m, n, 3) array, optional
         The net a drag starts from (model units), for ``displacement_fairness`` and
-        ``closeness``.
+        ``closeness``, and the start of the ``rim`` term.
+    rim_slack : (m·n,) array, optional
+        How far the ``rim`` term lets each vertex of ``f_start`` come in (model units; default
+        0): the distance it lies beyond the reference's edge (a net traced past it).
     """
 
     layout: NetLayout
@@ -69,6 +73,7 @@ class Problem:
     soft: tuple[str, ...] = SOFT_TERMS
     boundary_ids: np.ndarray | None = None
     f_start: np.ndarray | None = None
+    rim_slack: np.ndarray | None = None
     _scaled_reference: object | None = field(default=None, init=False, repr=False)
 
     def active(self) -> list[str]:
@@ -89,6 +94,8 @@ class Problem:
                 continue
             if name in START_TERMS and self.f_start is None:
                 continue
+            if name == "rim" and (self.f_start is None or self.reference is None):
+                continue
             names.append(name)
         return names
 
@@ -101,6 +108,12 @@ class Problem:
         if name in START_TERMS:
             start = np.asarray(self.f_start, dtype=float).reshape(-1, 3) / s
             return lambda x: fn(x, lay, start)
+        if name == "rim":
+            start = np.asarray(self.f_start, dtype=float).reshape(-1, 3) / s
+            ids, outward = rim_directions(lay, start)
+            slack = (np.zeros(len(ids)) if self.rim_slack is None
+                     else np.asarray(self.rim_slack, dtype=float).ravel()[ids] / s)
+            return lambda x: fn(x, lay, ids, start[ids], outward, slack)
         if name == "handles":
             ids = self.handle_ids
             p = (self.handle_targets if targets is None else targets) / s
@@ -139,9 +152,7 @@ class Problem:
         The net is rescaled to its own mean edge length 1 first, as the paper does for R.
         """
         own = mean_edge_length(f)
-        rescaled = Problem(self.layout, own, self.weights, self.f0, self.handle_ids,
-                           self.handle_targets, self.reference, self.soft, self.boundary_ids,
-                           self.f_start)
+        rescaled = replace(self, scale=own)
         x = rescaled.x_from_vertices(f)
         return {t.name: float(np.linalg.norm(t.func(x)[0])) for t in rescaled.terms()}
 

@@ -271,7 +271,7 @@ class EditSession:
             p = self.prepared
             problem = net_problem(p.net.f_mm, p.settings.schedules, reference=p.surface,
                                   handle_ids=ids, handle_targets=None, soft=SOFT[self.mode],
-                                  boundary_ids=p.rim)
+                                  boundary_ids=p.rim, rim_slack=p.rim_slack)
             workspace = self._live.workspace if self._live is not None else None
             self._live = _Live(key, problem, problem.x_from_vertices(self.f_mm), workspace,
                                problem.terms(targets))

@@ -43,7 +43,8 @@ from dgpc_cli.core.solver import Schedule, parse_weight
 #: data is given: approximation needs ``--reference``, handles ``--handles``, isometry the input
 #: net; boundary needs net rim vertices that start on the reference's boundary.
 MODES: dict[str, dict[str, str]] = {
-    "fit": {"gpc": "1", "approximation": "1", "boundary": "1", "fairness": "0.01->0"},
+    "fit": {"gpc": "1", "approximation": "1", "boundary": "1", "rim": "1",
+            "fairness": "0.01->0"},
     "developable": {"gpc": "1", "arclength": "1", "equal_strip_width": "1", "developable": "1",
                     "approximation": "1", "boundary": "1"},
     "revolution": {"net": "1e6", "gpc": "1e6", "equal_strip_width": "1e6", "handles": "1e6",
@@ -58,7 +59,7 @@ MODES: dict[str, dict[str, str]] = {
 #: nor need a reference be isometric to a surface of revolution. The reference's boundary
 #: only pulls: a geodesic net need not end on it everywhere. In isometric mode (6) and the
 #: edge lengths are weighed against each other; ``--gpc-tol`` and ``--max-strain`` judge them.
-SOFT = {"fit": ("boundary",), "developable": ("approximation", "boundary"),
+SOFT = {"fit": ("boundary", "rim"), "developable": ("approximation", "boundary"),
         "revolution": ("approximation",), "isometric": ("gpc", "isometry")}
 
 #: The regularizer each mode lowers once the net has settled, while the strain against the input

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -84,17 +84,20 @@ def boundary_vertices(f: np.ndarray, reference, snap: float = BOUNDARY_SNAP) -> 
 def net_problem(f: np.ndarray, weights: dict[str, Schedule], *, reference=None,
                 handle_ids: np.ndarray | None = None, handle_targets: np.ndarray | None = None,
                 isometry_to: np.ndarray | None = None, soft: tuple[str, ...] = (),
-                boundary_ids: np.ndarray | None = None) -> Problem:
+                boundary_ids: np.ndarray | None = None,
+                rim_slack: np.ndarray | None = None) -> Problem:
     """The problem :func:`optimize_net` solves for the input net ``f (m, n, 3)`` (its
     arguments of the same names): the drag terms bound to ``f``, the isometry term to
-    ``isometry_to`` (default ``f``), scaled to the mean edge length of ``f``."""
+    ``isometry_to`` (default ``f``), scaled to the mean edge length of ``f``; the ``rim``
+    term holds the rim of ``f`` (``rim_slack``: see :class:`~dgpc_cli.core.problem.Problem`)."""
     f = np.asarray(f, dtype=float)
     m, n = f.shape[:2]
     problem = Problem(NetLayout(m, n), mean_edge_length(f), weights,
                       f0=(f if isometry_to is None else np.asarray(isometry_to, dtype=float))
                       if "isometry" in weights else None,
                       handle_ids=handle_ids, handle_targets=handle_targets,
-                      reference=reference, soft=soft, boundary_ids=boundary_ids, f_start=f)
+                      reference=reference, soft=soft, boundary_ids=boundary_ids, f_start=f,
+                      rim_slack=rim_slack)
     if not problem.active():
         raise DgpcError("no constraint term is active", source="--weight")
     return problem
@@ -110,6 +113,7 @@ def optimize_net(
     isometry_to: np.ndarray | None = None,
     soft: tuple[str, ...] = (),
     boundary_ids: np.ndarray | None = None,
+    rim_slack: np.ndarray | None = None,
     steps: int = 1,
     max_iter: int | None = None,
     tol: float = 1e-10,
@@ -126,7 +130,8 @@ def optimize_net(
     (the last one must reach ``tol``). ``isometry_to`` is the net whose edge lengths w⁰ (and
     boundary angles) the isometry term keeps (default: the input). ``soft`` names the terms
     the tolerance does not apply to (see ``modes.SOFT``). ``boundary_ids`` are the vertices the
-    ``boundary`` term keeps on the reference's boundary (see :func:`boundary_vertices`). The
+    ``boundary`` term keeps on the reference's boundary (see :func:`boundary_vertices`);
+    ``rim_slack`` (per vertex of ``f``) how far the ``rim`` term lets each rim vertex come in. The
     drag terms (``displacement_fairness``, ``closeness``) are bound to the input ``f``. A last
     step that soft terms or regularizers held off ``tol`` is followed by a projection onto the
     hard terms alone (damped, so it moves the net as little as it must). ``relax`` names a
@@ -150,7 +155,7 @@ def optimize_net(
         raise DgpcError("--steps must be at least 1", source="--steps")
     problem = net_problem(f, weights, reference=reference, handle_ids=handle_ids,
                           handle_targets=handle_targets, isometry_to=isometry_to, soft=soft,
-                          boundary_ids=boundary_ids)
+                          boundary_ids=boundary_ids, rim_slack=rim_slack)
     x = problem.x_from_vertices(f)
     start = f.reshape(-1, 3)[handle_ids] if handle_ids is not None else None
     results: list[SolverResult] = []
@@ -206,9 +211,7 @@ def optimize_net(
         again = any(w.start != w.end for w in weights.values())
         hard_weights = {**weights, **{name: Schedule(weights[name].end, 0.0) if again
                                       else Schedule.constant(0.0) for name in pulling}}
-        hard_only = Problem(layout, problem.scale, hard_weights,
-                            problem.f0, handle_ids, handle_targets, reference, problem.soft,
-                            boundary_ids, f)
+        hard_only = replace(problem, weights=hard_weights)
         log.info("projecting onto the hard constraints without %s", ", ".join(pulling))
         result = guided_projection(x, hard_only.terms(),
                                    max_iter=(max_iter - total) if budget else TOL.max_iter,
@@ -427,10 +430,8 @@ def _relax(problem: Problem, name: str, x: np.ndarray, f_input: np.ndarray, targ
 
 def _reweighted(problem: Problem, weights: dict[str, float]) -> Problem:
     """``problem`` with the terms of ``weights`` at those constant weights."""
-    return Problem(problem.layout, problem.scale,
-                   {**problem.weights, **{k: Schedule.constant(w) for k, w in weights.items()}},
-                   problem.f0, problem.handle_ids, problem.handle_targets, problem.reference,
-                   problem.soft, problem.boundary_ids, problem.f_start)
+    return replace(problem, weights={**problem.weights,
+                                     **{k: Schedule.constant(w) for k, w in weights.items()}})
 
 
 #: Rows named in a status message.

@@ -69,7 +69,8 @@ class OptimizeSettings:
 @dataclass
 class PreparedNet:
     """The input net of an optimization, its reference mesh and what is derived from them (in
-    mm): the scaled reference surface and the rim vertices the ``boundary`` term holds."""
+    mm): the scaled reference surface, the rim vertices the ``boundary`` term holds and how far
+    the ``rim`` term lets each vertex come in (:func:`_rim_slack`)."""
 
     net: NetArtifact
     json_path: Path
@@ -77,6 +78,7 @@ class PreparedNet:
     mesh: object | None
     surface: ReferenceSurface | None
     rim: np.ndarray | None
+    rim_slack: np.ndarray | None = None
 
     @property
     def mm(self) -> float:
@@ -105,7 +107,17 @@ def prepare_optimize(stem: Path, settings: OptimizeSettings, *, reference: Path 
     rim = (boundary_vertices(net.f_mm, surface)
            if surface is not None and not net.extend
            and schedules.get("boundary", Schedule.constant(0)).end > 0 else None)
-    return PreparedNet(net, json_path, settings, mesh, surface, rim)
+    return PreparedNet(net, json_path, settings, mesh, surface, rim,
+                       _rim_slack(net, mesh, surface, mm) if surface is not None else None)
+
+
+def _rim_slack(net: NetArtifact, mesh, surface: ReferenceSurface, mm: float) -> np.ndarray:
+    """How far (mm) the ``rim`` term lets each vertex of the net come in: its distance from the
+    reference mesh itself (0 on it; past its edge for a net traced beyond it, ``init
+    --extend``, where ``surface`` is the mesh's continuation and the mesh alone is measured)."""
+    own = surface if not net.extend else ReferenceSurface(mesh.vertices * mm, mesh.faces)
+    q = net.f_mm.reshape(-1, 3)
+    return np.linalg.norm(q - own.closest(q)[0], axis=1)
 
 
 def optimize_prepared(prepared: PreparedNet, handle_ids: np.ndarray | None,
@@ -115,6 +127,7 @@ def optimize_prepared(prepared: PreparedNet, handle_ids: np.ndarray | None,
     s, net = prepared.settings, prepared.net
     outcome = optimize_net(
         net.f_mm, s.schedules, reference=prepared.surface, boundary_ids=prepared.rim,
+        rim_slack=prepared.rim_slack,
         handle_ids=handle_ids, handle_targets=handle_targets, soft=SOFT[s.mode], steps=s.steps,
         max_iter=s.max_iter, tol=s.tol, backend=s.backend, progress=progress,
         relax=RELAX.get(s.mode), gpc_tol=s.gpc_tol if s.mode == "isometric" else None,

@@ -31,8 +31,9 @@ def fabrication_warnings(fab: dict) -> list[str]:
     out = []
     gap, ratio = fab["max_end_gap"], fab["area_ratio"]
     if gap is not None and gap == gap and gap > END_GAP_WARN:
+        # a strip dropped by the trim (wholly beyond the outline) has no end gaps
         worst = max(fab["per_strip"], key=lambda i: max(
-            (abs(g) for g in fab["per_strip"][i]["end_gaps"] if g is not None), default=0.0))
+            (abs(g) for g in fab["per_strip"][i]["end_gaps"] if g is not None), default=-1.0))
         out.append(f"strips end up to {gap:.4g} mm from the net's edge rows ({worst}): built "
                    "as cut, the design has gaps along its edges")
     if ratio is not None and abs(ratio - 1.0) > AREA_WARN:
@@ -63,9 +64,9 @@ def fabrication_metrics(f: np.ndarray, units: str, records: list[dict], geometry
             part_gaps[r["id"]] = [part_end_gaps(A, B, ring, reference) for ring in rings]
             part_areas[r["id"]] = [abs(signed_area(strip_points(dev.A, dev.B, ring)))
                                    for ring in rings]
-        from trimesh.triangles import area as triangle_areas
-
-        outline_area = float(triangle_areas(reference.vertices[reference.faces]).sum())
+        tri = reference.vertices[reference.faces]
+        outline_area = float(0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0],
+                                                           tri[:, 2] - tri[:, 0]), axis=-1).sum())
     return summary(ids, measures, mm_per_unit=mm_per_unit(units), part_gaps=part_gaps,
                    part_areas=part_areas, outline_area=outline_area)
 

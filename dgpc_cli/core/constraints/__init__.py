@@ -13,6 +13,7 @@ from dgpc_cli.core.constraints.gpc import gpc
 from dgpc_cli.core.constraints.handles import handles
 from dgpc_cli.core.constraints.isometry import isometry
 from dgpc_cli.core.constraints.net import net
+from dgpc_cli.core.constraints.rim import rim
 from dgpc_cli.core.constraints.strip_widths import (
     arclength,
     developable,
@@ -32,6 +33,7 @@ TERMS = {
     "isometry": isometry,
     "approximation": approximation,
     "boundary": boundary,
+    "rim": rim,
     "handles": handles,
     "fairness": fairness,
     "displacement_fairness": displacement_fairness,
