@@ -1,6 +1,6 @@
 """Lower bounds on the sheet count (dgpc_cli.nesting.bounds): the parts' area, and the sheet's
 centre line that every part longer than half the sheet crosses; the fill reaches them on sets
-of long boards, overlap-free."""
+of long boards, overlap-free; spyrrow's sheets take boards nearly as long as the sheet."""
 
 import numpy as np
 import pytest
@@ -117,4 +117,15 @@ def test_a_family_of_board_sets_nests_at_or_near_the_bound(seed):
                                sheet.spacing, ROT)
     assert bound["sheets"] <= result.sheet_count <= bound["sheets"] + 1
     assert (result.sheet_count, bound["sheets"]) == FAMILY[seed]
+    _overlap_free(result)
+
+
+def test_spyrrow_sheets_take_boards_nearly_as_long_as_the_sheet():
+    """Boards 975 mm long on a sheet 980 mm wide inside its margin, 8 mm apart: spyrrow keeps
+    the spacing from the strip's ends too, so its layout starts 8 mm in; the sheets measure
+    from its left-most point (it used to find every board too long and stop). 4 a sheet."""
+    records = [_record(i, _rectangle(975.0, 100.0)) for i in range(5)]
+    result = nest_parts(records, Sheet(1000.0, 500.0, 10.0, 8.0), ROT, engine="spyrrow",
+                        time_limit=1)
+    assert result.sheet_count == 2
     _overlap_free(result)
