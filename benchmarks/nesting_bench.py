@@ -1,12 +1,17 @@
 """Nesting benchmark (SPEC §6 nest, §10): our sheets' overall utilization beside spyrrow's own
 single-strip density on the same parts, in the same run; then the facade sets, time and sheets
-of the default fill beside spyrrow sheet by sheet (``--engine spyrrow``), in the same run.
+of the default fill beside spyrrow sheet by sheet (``--engine spyrrow``) and beside a lower
+bound on the sheet count (:mod:`dgpc_cli.nesting.bounds`), in the same run.
 
 Facade sets (built with dgpc in a temporary folder unless given): the Gehry facade's four
-patches (samples/projects/gehry-facade.toml: 48 strips) on 6000 × 1250 mm sheets, and the
-demo wall's strips cut into boards (``unfold --stock-length 2.5``: 39 boards) on 3000 × 1500
-mm. Targets (issue "nesting that scales with the facade"): the 48 Gehry parts on 16 sheets in
-≤ 10 s, the 39 boards on ≤ 7 sheets.
+patches (samples/projects/gehry-facade.toml: 48 strips) on 6000 × 1250 mm sheets; the demo
+wall's 12 strips (pipelines/timber-cladding.mk) on its 6100 × 2500 mm panels with the router's
+spacing and margin (8 and 20 mm); the same strips cut into boards (``unfold --stock-length
+2.5``: 36 boards since the strips end on the net's edge rows, 39 before) on 3000 × 1500 mm.
+Targets (issue "nesting that scales with the facade"): the 48 Gehry parts on 16 sheets in
+≤ 10 s, the boards on ≤ 7 sheets, which the centre-line bound rules out for the 36 boards of
+today (every board longer than half the sheet crosses its centre line, at most 4 a sheet:
+at least 8 sheets).
 
 Sample: the flat parts of a revolution-isometric net — a full-ring catenoid meridian net
 (21 × 25, 24 strips) bent by Minding's bending (λ = 0.7), planarized and unfolded, at scale 100
@@ -16,7 +21,7 @@ rotations and spacing), seed 0, one worker. Ratio = our overall utilization (eve
 counted in full) / spyrrow's strip density.
 
     python benchmarks/nesting_bench.py [--sheet 1650x800] [--time-limit 10]
-        [--gehry FLAT FLAT FLAT FLAT] [--boards FLAT] [--sheet-time 3]
+        [--gehry FLAT FLAT FLAT FLAT] [--wall FLAT] [--boards FLAT] [--sheet-time 3]
 """
 
 from __future__ import annotations
@@ -73,36 +78,48 @@ def gehry_flats(folder: Path) -> list[Path]:
     return out
 
 
-def wall_boards(folder: Path) -> Path:
-    """The demo wall's strips cut into boards 2.5 m long (pipelines/timber-cladding.mk)."""
+def wall_flats(folder: Path) -> tuple[Path, Path]:
+    """The demo wall's strips (pipelines/timber-cladding.mk) and the same strips cut into
+    boards 2.5 m long."""
     _dgpc("init", "--surface", "revolution", "--profile", ROOT / "samples/profiles/wall.csv",
           "--rows", 21, "--cols", 13, "--span", 60, "--units", "m", "-o", folder / "base")
     _dgpc("optimize", folder / "base", "--mode", "isometric", "--handles",
           ROOT / "samples/handles/wall-21x13.json", "--steps", 5, "--max-strain", 3e-4,
           "--gpc-tol", 1e-4, "-o", folder / "wall")
     _dgpc("planarize-strips", folder / "wall", "-o", folder / "strips")
+    _dgpc("unfold", folder / "strips", "-o", folder / "flat")
     _dgpc("unfold", folder / "strips", "--stock-length", 2.5, "-o", folder / "boards")
-    return folder / "boards"
+    return folder / "flat", folder / "boards"
 
 
 def facade_set(name: str, stems: list[Path], sheet: Sheet, sheet_time: float) -> None:
-    """Time and sheets of the default fill and of spyrrow sheet by sheet on one set."""
+    """Time and sheets of the default fill and of spyrrow sheet by sheet on one set, beside a
+    lower bound on the sheet count."""
+    from dgpc_cli.io.units import mm_per_unit
+    from dgpc_cli.nesting.bounds import sheet_lower_bounds
     from dgpc_cli.stages.combine_flats import combine_flats, flat_tags
 
     flats = [read_flat(s) for s in stems]
     records = flats[0].parts if len(flats) == 1 else \
         combine_flats(list(zip(flat_tags(stems), flats, strict=True))).parts
+    rotations = [0.0, 180.0]
     rows = {}
     for engine in ("fill", "spyrrow"):
         t0 = time.perf_counter()
-        result = nest_parts(records, sheet, [0.0, 180.0], units=flats[0].units, engine=engine,
+        result = nest_parts(records, sheet, rotations, units=flats[0].units, engine=engine,
                             time_limit=sheet_time)
         rows[engine] = (result.sheet_count, time.perf_counter() - t0, result.engine_info)
+    bound = sheet_lower_bounds(prepare_parts(records, mm_per_unit(flats[0].units)),
+                               sheet.width, sheet.height, sheet.margin, sheet.spacing,
+                               rotations)
     (n_f, t_f, info), (n_s, t_s, _) = rows["fill"], rows["spyrrow"]
-    print(f"{name}: {len(records)} parts, sheet {sheet.width:g}x{sheet.height:g} mm")
+    print(f"{name}: {len(records)} parts, sheet {sheet.width:g}x{sheet.height:g} mm, margin "
+          f"{sheet.margin:g}, spacing {sheet.spacing:g}")
     print(f"  fill (default)      {n_f} sheets  {t_f:6.1f} s  ({info.get('no_fit_polygons')} "
           f"no-fit polygons, {info.get('shapes')} shapes, {info.get('pairs')} pairs)")
     print(f"  spyrrow per sheet   {n_s} sheets  {t_s:6.1f} s  (budget {sheet_time:g} s a sheet)")
+    print(f"  lower bound         {bound['sheets']} sheets  (area {bound['area']}, centre "
+          f"line {bound['centre_line']})")
     print(f"  ratio fill/spyrrow  sheets {n_f / n_s:.3f}, time {t_f / t_s:.3f}")
 
 
@@ -115,8 +132,10 @@ def main() -> None:
     ap.add_argument("--time-limit", type=float, default=10.0)
     ap.add_argument("--gehry", nargs=4, type=Path, metavar="FLAT",
                     help="the four Gehry patches' flat artifacts (else built, minutes)")
+    ap.add_argument("--wall", type=Path, metavar="FLAT",
+                    help="the demo wall's strips (else built, with the boards)")
     ap.add_argument("--boards", type=Path, metavar="FLAT",
-                    help="the demo wall's boards (else built)")
+                    help="the demo wall's boards (else built, with the strips)")
     ap.add_argument("--sheet-time", type=float, default=3.0,
                     help="spyrrow's budget per sheet (s) on the facade sets")
     args = ap.parse_args()
@@ -125,8 +144,11 @@ def main() -> None:
         gehry = args.gehry or gehry_flats(Path(tmp))
         facade_set("Gehry facade, 4 patches", gehry, Sheet(6000, 1250, 10, 3), args.sheet_time)
     with tempfile.TemporaryDirectory() as tmp:
-        boards = [args.boards or wall_boards(Path(tmp))]
-        facade_set("demo wall in 2.5 m boards", boards, Sheet(3000, 1500, 10, 3),
+        wall, boards = (args.wall, args.boards) if args.wall and args.boards else \
+            wall_flats(Path(tmp))
+        facade_set("demo wall (router panels)", [wall], Sheet(6100, 2500, 20, 8),
+                   args.sheet_time)
+        facade_set("demo wall in 2.5 m boards", [boards], Sheet(3000, 1500, 10, 3),
                    args.sheet_time)
 
 

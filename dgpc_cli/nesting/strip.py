@@ -58,15 +58,18 @@ def spyrrow_sheets(parts: list[Part], sheet: Sheet, rotations: list[float], time
     s = 0
     while remaining:
         sol = _solve(parts, remaining, inner_h, rotations, sheet.spacing, time_limit, seed)
-        kept = []
+        placed = []
         for item in sol.placed_items:
             i = int(item.id)
             rot = _norm(item.rotation)
             rot = next((r for r in rotations if _norm(r) == rot), rot)
-            pts = parts[i].outline @ rotation_matrix(rot).T + np.asarray(item.translation)
-            if pts[:, 0].max() <= inner_w:
-                kept.append(Placement(i, s, float(rot), (float(item.translation[0]) + m,
-                                                         float(item.translation[1]) + m)))
+            placed.append((i, rot, np.asarray(item.translation, float),
+                           parts[i].outline @ rotation_matrix(rot).T))
+        # spyrrow keeps the items' separation from the strip's ends too: the layout starts
+        # that far in, so measure what a sheet takes from its left-most point
+        x0 = min((float((pts[:, 0] + t[0]).min()) for _, _, t, pts in placed), default=0.0)
+        kept = [Placement(i, s, float(rot), (float(t[0]) - x0 + m, float(t[1]) + m))
+                for i, rot, t, pts in placed if (pts[:, 0] + t[0]).max() - x0 <= inner_w]
         if not kept:
             kept_i = min(sol.placed_items, key=lambda it: it.translation[0])
             raise RuntimeError(f"spyrrow placed nothing inside the sheet (first: {kept_i.id})")
