@@ -3,13 +3,11 @@ a quad net (SPEC §5)."""
 
 from __future__ import annotations
 
-import logging
 from pathlib import Path
 
 import click
 
 from dgpc_cli.cli.finite_float import FiniteFloat
-from dgpc_cli.cli.init_patches import PatchCount, patch_nets
 from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import (
     check_writable,
@@ -20,19 +18,12 @@ from dgpc_cli.cli.options import (
     output_opt,
     show_progress,
 )
+from dgpc_cli.cli.patch_count import PatchCount
 from dgpc_cli.cli.progress import StatusLine
-from dgpc_cli.io.artifact import artifact_paths, file_input
-from dgpc_cli.io.atomic import write_files
-from dgpc_cli.io.net import net_files
-from dgpc_cli.io.rhino import with_3dm
-from dgpc_cli.io.units import DEFAULT_UNITS, UNIT_MM, UNIT_NAMES
-from dgpc_cli.stages.init import init_revolution
-from dgpc_cli.stages.inspect import summarize
-from dgpc_cli.stages.net_size import check_net_size
+from dgpc_cli.io.units import DEFAULT_UNITS, UNIT_MM
+from dgpc_cli.stages.init_nets import init_nets
 from dgpc_cli.surfaces.profiles import describe_builtins
 from dgpc_cli.surfaces.revolution import MAX_TWIST
-
-log = logging.getLogger(__name__)
 
 
 def parse_direction(text: str | None):
@@ -48,68 +39,6 @@ def parse_direction(text: str | None):
         raise click.BadParameter(f"{text!r} is not a direction: give three numbers x,y,z, "
                                  "not all zero", param_hint="'--direction'")
     return d
-
-
-def assumed_units_line(f, units: str) -> str:
-    """The stderr line of ``init`` without ``--units``: the unit assumed and the net's size in
-    it (its bounding box), so that a profile or mesh drawn in metres is caught at once."""
-    import numpy as np
-
-    size = np.ptp(np.asarray(f, dtype=float).reshape(-1, 3), axis=0)
-    dims = " × ".join(f"{x:.3g}" for x in size)
-    other = "m" if units != "m" else "mm"
-    return (f"init: no --units given: the net is in {units}, {dims} {units} (x × y × z); "
-            f"a model drawn in {UNIT_NAMES.get(other, other)} needs --units {other}")
-
-
-def _mesh_net(ctx, reference, method, base, direction, angle, rows, cols, spacing,
-              largest_component, extend):
-    from dgpc_cli.geodesics.extension import continued
-    from dgpc_cli.io.mesh import load_mesh
-    from dgpc_cli.stages.init_choice import choose
-    from dgpc_cli.stages.init_search import search
-
-    if rows is not None and cols is not None:  # refused before the mesh is read
-        check_net_size(rows, cols, "--rows/--cols", "use fewer --rows or --cols")
-    mesh = load_mesh(reference, pieces="largest" if largest_component else "one")
-    if method == "geodesic":
-        with StatusLine(ctx, "init") as status:
-            found = search(mesh, base=base, direction=direction, angle=angle, rows=rows,
-                           cols=cols, spacing=spacing, extend=extend, progress=status)
-        grid, outcome, extend = found.grid, found.outcome, found.extend
-        tried = [t.record for t in found.trials]
-    else:
-        extend = extend or 0.0
-        grid, outcome, tried = choose(mesh, continued(mesh, extend), method, base=base,
-                                      direction=direction, angle=angle, rows=rows, cols=cols,
-                                      spacing=spacing, extend_length=extend * mesh.bbox_diagonal)
-    net = grid.net
-    net.parameters.update(base=base or ("auto" if method == "geodesic" else None),
-                          angle=angle, largest_component=largest_component)
-    if extend > 0:
-        net.parameters["extend"] = extend
-    net.data["init"]["choice"] = {"chosen": grid.label, "coverage": outcome.coverage,
-                                  "tried": tried}
-    if method == "geodesic":
-        net.data["init"]["choice"]["search"] = found.record
-    if outcome.note:
-        log.warning("%s", outcome.note)
-    if show_progress(ctx):
-        if method == "geodesic":
-            quick = found.chosen.quick or {}
-            after = (f", {100 * quick['coverage']:.1f} % after a quick fit"
-                     if "coverage" in quick else "")
-            click.echo(f"init: {found.chosen.describe()}, {net.shape[0]} x {net.shape[1]} net "
-                       f"covering {100 * outcome.coverage:.1f} % of {mesh.path.name}{after}: "
-                       f"chosen of {len(tried)} candidates because it {found.why} "
-                       f"(options: {found.record['options']})", err=True)
-        else:
-            others = ", ".join(f"{t['candidate']} {100 * t['coverage']:.1f} %" for t in tried
-                               if "coverage" in t and t["candidate"] != grid.label)
-            click.echo(f"init: {grid.label}, {net.shape[0]} x {net.shape[1]} net covering "
-                       f"{100 * outcome.coverage:.1f} % of {mesh.path.name}"
-                       + (f" (also tried: {others})" if others else ""), err=True)
-    return net, mesh
 
 
 @click.command(short_help="Make an initial net.",
@@ -257,47 +186,13 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     if spacing is not None:
         spacing = spacing.in_units(units, artifact_units=units)
     check_writable(output, force, *([reference_out] if reference_out else []))
-    json_path, _ = artifact_paths(output)
-    folder = json_path.resolve().parent
-    files = {}
-    mesh = None
-    if surface:
-        result = init_revolution(profile, rows, cols, span_deg=span, twist=twist,
-                                 reference_out=reference_out, units=units, folder=folder)
-        net = result.net
-        if result.reference_obj is not None:
-            files[reference_out] = result.reference_obj
-    elif method:
-        net, mesh = _mesh_net(ctx, reference, method, base, d, angle, rows, cols, spacing,
-                              largest_component, extend)
-        if patches is not None:
-            written = patch_nets(ctx, net, mesh, patches, output,
-                                 {"method": method, "base": base, "direction": d,
-                                  "angle": angle, "rows": rows, "cols": cols,
-                                  "spacing": spacing,
-                                  "extend": net.parameters.get("extend", 0.0),
-                                  "largest_component": largest_component},
-                                 units=units, fmt=fmt, force=force)
-            if written:
-                for path in written:
-                    click.echo(str(path))
-                return
-    else:
-        from dgpc_cli.stages.init_quads import init_from_quads
-
-        net = init_from_quads(from_quads)
-        net.inputs["quads"] = file_input(from_quads, folder)
-        if reference is not None:
-            from dgpc_cli.io.mesh import load_mesh
-
-            mesh = load_mesh(reference, pieces="largest" if largest_component else "one")
-    if mesh is not None:
-        net.inputs["reference"] = net.data["reference"] = file_input(mesh.path, folder)
-    net.units = units
-    net.parameters["units"] = units
-    net.metrics = summarize(net, mesh=mesh)
-    if given_units is None and show_progress(ctx):
-        click.echo(assumed_units_line(net.f, units), err=True)
-    files.update(with_3dm(net_files(output, net), output, fmt))
-    write_files(files, force=force)
-    click.echo(str(json_path))
+    say = (lambda text: click.echo(text, err=True)) if show_progress(ctx) else None
+    written = init_nets(output, units=units, units_given=given_units is not None, fmt=fmt,
+                        force=force, surface=surface, profile=profile, reference=reference,
+                        method=method, from_quads=from_quads, base=base, direction=d,
+                        angle=angle, rows=rows, cols=cols, spacing=spacing, span=span,
+                        twist=twist, reference_out=reference_out,
+                        largest_component=largest_component, extend=extend, patches=patches,
+                        check=check_writable, status=lambda: StatusLine(ctx, "init"), say=say)
+    for path in written:
+        click.echo(str(path))

@@ -1,15 +1,13 @@
-"""``dgpc init MESH --patches auto|K``: one net per patch of the reference
-(``stages.init_patches``), written as ``STEM.p1``, ``STEM.p2``, … each with its patch mesh
+"""``dgpc init MESH --patches auto|K``: one net per patch of the reference (the split:
+``stages.init_patches``), written as ``STEM.p1``, ``STEM.p2``, … each with its patch mesh
 ``STEM.pK.patch.obj`` as its reference."""
 
 from __future__ import annotations
 
 import logging
+from collections.abc import Callable
 from pathlib import Path
 
-import click
-
-from dgpc_cli.cli.options import check_writable, show_progress
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths, file_input, relative_input
 from dgpc_cli.io.atomic import write_files
@@ -17,30 +15,6 @@ from dgpc_cli.io.net import NetArtifact, net_files
 from dgpc_cli.io.rhino import with_3dm
 
 log = logging.getLogger(__name__)
-
-#: The most patches ``--patches K`` takes.
-MAX_COUNT = 12
-
-
-class PatchCount(click.ParamType):
-    """``auto`` (None) or a whole number of patches, 1 to :data:`MAX_COUNT`."""
-
-    name = "auto|K"
-
-    def convert(self, value, param, ctx):
-        if value is None or isinstance(value, int):
-            return value
-        text = str(value).strip().lower()
-        if text == "auto":
-            return "auto"
-        try:
-            k = int(text)
-        except ValueError:
-            k = 0
-        if not 1 <= k <= MAX_COUNT:
-            self.fail(f"{value!r} is not 'auto' or a number of patches from 1 to {MAX_COUNT}",
-                      param, ctx)
-        return k
 
 
 def _record_choice(net: NetArtifact, label: str, outcome, tried: list, options: dict) -> None:
@@ -57,11 +31,13 @@ def _record_choice(net: NetArtifact, label: str, outcome, tried: list, options: 
         log.warning("%s", outcome.note)
 
 
-def patch_nets(ctx, single: NetArtifact, mesh, patches, output: Path, options: dict, *,
-               units: str, fmt: str, force: bool) -> list[Path] | None:
+def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, *,
+               units: str, fmt: str, force: bool, check: Callable[..., None],
+               say: Callable[[str], None] | None = None) -> list[Path] | None:
     """Make and write the patch nets of ``--patches`` (``options``: the command's mesh
     options); the JSON paths written, or None when one patch is kept (``single`` then records
-    why, and the caller writes it as usual)."""
+    why, and the caller writes it as usual). ``check(stem, force, *extra)`` refuses a target
+    before anything is written; ``say``, when given, gets the lines that say why and what."""
     from dgpc_cli.geodesics.extension import continued, largest_unfolded
     from dgpc_cli.stages.init_choice import choose
     from dgpc_cli.stages.init_patches import plan, ratio_text
@@ -95,14 +71,14 @@ def patch_nets(ctx, single: NetArtifact, mesh, patches, output: Path, options: d
     count = None if patches == "auto" else int(patches)
     nets, record = plan(mesh, count, stem, single.f, choice["chosen"], choice["coverage"],
                         make)
-    if show_progress(ctx):
-        click.echo(f"init: {record['reason']}", err=True)
+    if say is not None:
+        say(f"init: {record['reason']}")
     if not nets:
         single.parameters["patches"] = patches
         single.data["patches"] = record
         return None
     for k, p in enumerate(nets, start=1):     # every target checked before any is written
-        check_writable(stem.parent / f"{stem.name}.p{k}", force, p.mesh.path)
+        check(stem.parent / f"{stem.name}.p{k}", force, p.mesh.path)
     written = []
     for k, p in enumerate(nets, start=1):
         net = p.net
@@ -119,9 +95,9 @@ def patch_nets(ctx, single: NetArtifact, mesh, patches, output: Path, options: d
         out = stem.parent / f"{stem.name}.p{k}"
         files = {p.mesh.path: p.obj, **with_3dm(net_files(out, net), out, fmt)}
         write_files(files, force=force)
-        if show_progress(ctx):
-            click.echo(f"init: {out.name}: {p.label}, {net.shape[0]} x {net.shape[1]} net "
-                       f"covering {100 * p.outcome.coverage:.1f} % of its patch, strips "
-                       f"varying up to {ratio_text(p.width['ratio'])} in width", err=True)
+        if say is not None:
+            say(f"init: {out.name}: {p.label}, {net.shape[0]} x {net.shape[1]} net "
+                f"covering {100 * p.outcome.coverage:.1f} % of its patch, strips "
+                f"varying up to {ratio_text(p.width['ratio'])} in width")
         written.append(artifact_paths(out)[0])
     return written

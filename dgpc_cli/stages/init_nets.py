@@ -1,0 +1,93 @@
+"""``dgpc init``: the stage the command calls (SPEC §5). It makes the net from its source (an
+analytic surface: ``stages.init``; a reference mesh: ``stages.init_mesh_net``, split into
+patches with ``--patches``: ``stages.init_patch_nets``; a quad net: ``stages.init_quads``),
+gives it its unit, reference and metrics, and writes it."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from contextlib import nullcontext
+from pathlib import Path
+
+import numpy as np
+
+from dgpc_cli.io.artifact import artifact_paths, file_input
+from dgpc_cli.io.atomic import write_files
+from dgpc_cli.io.net import net_files
+from dgpc_cli.io.rhino import with_3dm
+from dgpc_cli.io.units import UNIT_NAMES
+from dgpc_cli.stages.init import init_revolution
+from dgpc_cli.stages.init_mesh_net import Status, mesh_net
+from dgpc_cli.stages.init_patch_nets import patch_nets
+from dgpc_cli.stages.inspect import summarize
+
+
+def assumed_units_line(f, units: str) -> str:
+    """The stderr line of ``init`` without ``--units``: the unit assumed and the net's size in
+    it (its bounding box), so that a profile or mesh drawn in metres is caught at once."""
+    size = np.ptp(np.asarray(f, dtype=float).reshape(-1, 3), axis=0)
+    dims = " × ".join(f"{x:.3g}" for x in size)
+    other = "m" if units != "m" else "mm"
+    return (f"init: no --units given: the net is in {units}, {dims} {units} (x × y × z); "
+            f"a model drawn in {UNIT_NAMES.get(other, other)} needs --units {other}")
+
+
+def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: bool,
+              check: Callable[..., None], surface: str | None = None,
+              profile: str | None = None,
+              reference: Path | None = None, method: str | None = None,
+              from_quads: Path | None = None, base: str | None = None, direction=None,
+              angle: float | None = None, rows: int | None = None, cols: int | None = None,
+              spacing: float | None = None, span: float = 180.0, twist: float = 0.0,
+              reference_out: Path | None = None, largest_component: bool = False,
+              extend: float | None = None, patches=None, status: Status = nullcontext,
+              say: Callable[[str], None] | None = None) -> list[Path]:
+    """Make and write the nets of ``dgpc init`` (its options checked and their lengths in
+    ``units``); the JSON paths written. ``check(stem, force, *extra)`` refuses a patch net's
+    target before any is written; ``status`` makes the status line of the geodesic search;
+    ``say``, when given, gets the stderr lines that say what was made."""
+    json_path, _ = artifact_paths(output)
+    folder = json_path.resolve().parent
+    files = {}
+    mesh = None
+    if surface:
+        result = init_revolution(profile, rows, cols, span_deg=span, twist=twist,
+                                 reference_out=reference_out, units=units, folder=folder)
+        net = result.net
+        if result.reference_obj is not None:
+            files[reference_out] = result.reference_obj
+    elif method:
+        made = mesh_net(reference, method, base=base, direction=direction, angle=angle,
+                        rows=rows, cols=cols, spacing=spacing,
+                        largest_component=largest_component, extend=extend, status=status,
+                        say=say)
+        net, mesh = made.net, made.mesh
+        if patches is not None:
+            written = patch_nets(net, mesh, patches, output,
+                                 {"method": method, "base": base, "direction": direction,
+                                  "angle": angle, "rows": rows, "cols": cols,
+                                  "spacing": spacing,
+                                  "extend": net.parameters.get("extend", 0.0),
+                                  "largest_component": largest_component},
+                                 units=units, fmt=fmt, force=force, check=check, say=say)
+            if written:
+                return written
+    else:
+        from dgpc_cli.stages.init_quads import init_from_quads
+
+        net = init_from_quads(from_quads)
+        net.inputs["quads"] = file_input(from_quads, folder)
+        if reference is not None:
+            from dgpc_cli.io.mesh import load_mesh
+
+            mesh = load_mesh(reference, pieces="largest" if largest_component else "one")
+    if mesh is not None:
+        net.inputs["reference"] = net.data["reference"] = file_input(mesh.path, folder)
+    net.units = units
+    net.parameters["units"] = units
+    net.metrics = summarize(net, mesh=mesh)
+    if not units_given and say is not None:
+        say(assumed_units_line(net.f, units))
+    files.update(with_3dm(net_files(output, net), output, fmt))
+    write_files(files, force=force)
+    return [json_path]
