@@ -63,14 +63,6 @@ def shot(browser, path: Path) -> np.ndarray:
     return pixels(browser.screenshot(path))
 
 
-def click(browser, x: float, y: float) -> None:
-    browser.call("Input.dispatchMouseEvent", type="mouseMoved", x=x, y=y)
-    browser.call("Input.dispatchMouseEvent", type="mousePressed", x=x, y=y, button="left",
-                 buttons=1, clickCount=1)
-    browser.call("Input.dispatchMouseEvent", type="mouseReleased", x=x, y=y, button="left",
-                 buttons=0, clickCount=1)
-
-
 def main() -> None:
     d = Path(tempfile.mkdtemp())
     subprocess.run([sys.executable, "-m", "dgpc_cli.cli.main", "-q", "init", "--surface",
@@ -93,7 +85,7 @@ def main() -> None:
             box = js(b, "(() => { const r = [...document.querySelectorAll('input[type=checkbox]')]"
                         ".map(x => x.getBoundingClientRect()).find(r => r.width > 0); "
                         "return [r.left + r.width / 2, r.top + r.height / 2]; })()")
-            click(b, *box["result"]["value"])
+            b.click(*box["result"]["value"])
             print("fabrication figures on", flush=True)
             b.wait_text("Strips", 600)
             first = status(b)
@@ -124,7 +116,7 @@ def main() -> None:
             grey = np.nonzero((np.abs(im[..., 0] - im[..., 1]) < 12) & (im[..., 0] < 200)
                               & (im[..., 0] > 60) & (np.arange(WIDTH)[None, :] < 0.68 * WIDTH))
             before = status(b)
-            click(b, float(np.median(grey[1])), float(np.median(grey[0])))
+            b.click(float(np.median(grey[1])), float(np.median(grey[0])))
             b.wait_text("): a handle.", 300)
             before = settled(b, before)
             cx, cy = x + w / 2, y + h / 2

@@ -94,6 +94,14 @@ class Browser:
         Path(path).write_bytes(data)
         return data
 
+    def click(self, x: float, y: float) -> None:
+        """Move to ``(x, y)`` and click the left button there."""
+        self.call("Input.dispatchMouseEvent", type="mouseMoved", x=x, y=y)
+        self.call("Input.dispatchMouseEvent", type="mousePressed", x=x, y=y, button="left",
+                  buttons=1, clickCount=1)
+        self.call("Input.dispatchMouseEvent", type="mouseReleased", x=x, y=y, button="left",
+                  buttons=0, clickCount=1)
+
     def drag(self, start: tuple[float, float], stop: tuple[float, float], steps: int = 12,
              pause: float = 0.05) -> None:
         """Press the left button at ``start``, move to ``stop`` in ``steps``, release."""

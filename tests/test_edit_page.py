@@ -110,14 +110,6 @@ def gizmo_arrow(im: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return centre, axis
 
 
-def click(browser, x: float, y: float) -> None:
-    browser.call("Input.dispatchMouseEvent", type="mouseMoved", x=x, y=y)
-    browser.call("Input.dispatchMouseEvent", type="mousePressed", x=x, y=y, button="left",
-                 buttons=1, clickCount=1)
-    browser.call("Input.dispatchMouseEvent", type="mouseReleased", x=x, y=y, button="left",
-                 buttons=0, clickCount=1)
-
-
 def test_page_shows_the_net_and_a_drag_changes_it(wall, tmp_path):
     proc, url = serve(wall)
     try:
@@ -147,7 +139,7 @@ def test_page_shows_the_net_and_a_drag_changes_it(wall, tmp_path):
             net = after[:, : int(0.55 * WIDTH)]
             grey = np.nonzero((abs(net[..., 0] - net[..., 1]) < 12) & (net[..., 0] < 200)
                               & (net[..., 0] > 60))
-            click(browser, float(np.median(grey[1])), float(np.median(grey[0])))
+            browser.click(float(np.median(grey[1])), float(np.median(grey[0])))
             browser.wait_text("): a handle.", 120)
 
             browser.call("Runtime.evaluate", expression=(

@@ -33,18 +33,15 @@ def patches_figure(f: np.ndarray, patch: tuple[np.ndarray, np.ndarray] | None,
     from matplotlib.patches import Patch as LegendPatch
 
     layers, legend = [], []
-    if whole is not None:
-        V, F = whole
+    for mesh, colour, name, label in ((whole, WHOLE, "whole", "the whole mesh"),
+                                      (patch, PATCH, "patch", "this net's patch")):
+        if mesh is None:
+            continue
+        V, F = mesh
         layers.append(Polygons(np.asarray(V, float)[np.asarray(F)],
-                               np.tile(WHOLE, (len(F), 1)), "whole", edgecolor=(0, 0, 0, 0),
+                               np.tile(colour, (len(F), 1)), name, edgecolor=(0, 0, 0, 0),
                                linewidth=0.0))
-        legend.append(LegendPatch(facecolor=WHOLE, edgecolor="0.5", label="the whole mesh"))
-    if patch is not None:
-        V, F = patch
-        layers.append(Polygons(np.asarray(V, float)[np.asarray(F)],
-                               np.tile(PATCH, (len(F), 1)), "patch", edgecolor=(0, 0, 0, 0),
-                               linewidth=0.0))
-        legend.append(LegendPatch(facecolor=PATCH, edgecolor="0.5", label="this net's patch"))
+        legend.append(LegendPatch(facecolor=colour, edgecolor="0.5", label=label))
     quads = grid_quads(f)
     layers.append(Polygons(quads, np.tile(NET, (len(quads), 1)), "net"))
     segs = cut_segments(curves)
