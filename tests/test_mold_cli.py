@@ -102,7 +102,8 @@ def test_fit_on_a_surface_not_isometric_to_revolution_fails_naming_rows(tmp_path
     """A net fitted to a freeform patch (wave.obj) is a gpc net whose strip widths vary along
     the parallels: (5) fails and nothing is written."""
     wave = Path(__file__).resolve().parents[2] / "shared" / "data" / "wave.obj"
-    dgpc("init", wave, "--method", "geodesic", "--rows", 12, "--cols", 8, "-o", tmp_path / "e0")
+    dgpc("init", wave, "--method", "geodesic", "--rows", 12, "--cols", 8, "--extend", 0,
+         "-o", tmp_path / "e0")
     dgpc("optimize", tmp_path / "e0", "--mode", "fit", "-o", tmp_path / "e")
     fitted = metrics(tmp_path / "e")
     assert fitted["gpc_angle_defect_max"] <= 1e-6                  # a real gpc net ...
@@ -282,8 +283,11 @@ def test_truth_through_an_isometric_optimization(tmp_path):
     handles = tmp_path / "handles.json"
     handles.write_text(json.dumps({"handles": [{"index": list(i), "target": g[i].tolist()}
                                                for i in idx]}))
+    # the crease guard (on by default for drags) holds the third differences along the rows
+    # near the start net's; a true bending of this wavy profile changes them, and the guard
+    # costs it strain 1.1e-6: off here, where the bending is known to be exact
     dgpc("optimize", tmp_path / "n0", "--mode", "isometric", "--handles", handles,
-         "--steps", 5, "-o", tmp_path / "bent")
+         "--steps", 5, "--weight", "crease_guard=0", "-o", tmp_path / "bent")
     bent = metrics(tmp_path / "bent", "--against", tmp_path / "n0")
     assert bent["R"] <= 1e-8 and bent["strain"]["max"] <= 1e-6
     moved = read_net(tmp_path / "bent").f

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from dgpc_cli.core.reference import ReferenceSurface
-from dgpc_cli.core.solver import Schedule
+from dgpc_cli.core.solver import Schedule, parse_weight
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.geodesics.extension import fit_surface
 from dgpc_cli.io.artifact import artifact_paths, file_input, recorded_file, resolve_input
@@ -79,6 +79,9 @@ class PreparedNet:
     surface: ReferenceSurface | None
     rim: np.ndarray | None
     rim_slack: np.ndarray | None = None
+    #: Whether the fit's ``rim`` term is on by the preset (not by ``--weight``): a fit that
+    #: pleats with it is run again without it (:func:`optimize_prepared`).
+    rim_by_default: bool = False
 
     @property
     def mm(self) -> float:
@@ -107,8 +110,11 @@ def prepare_optimize(stem: Path, settings: OptimizeSettings, *, reference: Path 
     rim = (boundary_vertices(net.f_mm, surface)
            if surface is not None and not net.extend
            and schedules.get("boundary", Schedule.constant(0)).end > 0 else None)
+    rim_by_default = (mode == "fit" and schedules.get("rim", Schedule.constant(0)).end > 0
+                      and "rim" not in {parse_weight(text)[0] for text in weights})
     return PreparedNet(net, json_path, settings, mesh, surface, rim,
-                       _rim_slack(net, mesh, surface, mm) if surface is not None else None)
+                       _rim_slack(net, mesh, surface, mm) if surface is not None else None,
+                       rim_by_default)
 
 
 def _rim_slack(net: NetArtifact, mesh, surface: ReferenceSurface, mm: float) -> np.ndarray:
@@ -124,9 +130,25 @@ def optimize_prepared(prepared: PreparedNet, handle_ids: np.ndarray | None,
                       handle_targets: np.ndarray | None, progress=None) -> OptimizeOutcome:
     """Guided projection of the prepared net towards the handles (targets in mm), judged as
     ``optimize`` judges it (status and message set)."""
+    outcome = _guided_projection(prepared, prepared.settings.schedules, handle_ids,
+                                 handle_targets, progress)
+    if outcome.status == "pleated" and prepared.rim_by_default:
+        # the rim held from coming in can leave fairness too little room to smooth a
+        # corrugated start: without it the fit may come in a little, but unpleated
+        schedules = {**prepared.settings.schedules, "rim": Schedule.constant(0.0)}
+        again = _guided_projection(prepared, schedules, handle_ids, handle_targets, progress)
+        if again.status != "pleated":
+            log.info("the fit pleated with its rim held; fitted again with the rim free")
+            prepared.settings.schedules = schedules
+            return again
+    return outcome
+
+
+def _guided_projection(prepared: PreparedNet, schedules: dict, handle_ids, handle_targets,
+                       progress) -> OptimizeOutcome:
     s, net = prepared.settings, prepared.net
     outcome = optimize_net(
-        net.f_mm, s.schedules, reference=prepared.surface, boundary_ids=prepared.rim,
+        net.f_mm, schedules, reference=prepared.surface, boundary_ids=prepared.rim,
         rim_slack=prepared.rim_slack,
         handle_ids=handle_ids, handle_targets=handle_targets, soft=SOFT[s.mode], steps=s.steps,
         max_iter=s.max_iter, tol=s.tol, backend=s.backend, progress=progress,

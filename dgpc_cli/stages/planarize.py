@@ -53,7 +53,7 @@ FAIRNESS_STEPS = (1.0, 10.0, 100.0)
 TEMPLATE_FITS = (("shared-outline", "per-strip"), ("shared-vertices", "net"))
 #: A template whose largest deviation from the net exceeds the per-strip strips' by more than
 #: this share of the width is not used (the strips stay on their own, with a warning).
-TEMPLATE_MARGIN = 0.005
+TEMPLATE_MARGIN = 0.01
 #: ``--trim`` drops parts shorter than this many quads along the strip.
 MIN_PART_QUADS = 1.0
 
