@@ -200,3 +200,28 @@ def test_full_sheets_are_skipped_without_no_fit_polygons(monkeypatch):
     assert with_probe.sheet_count == 4 and with_probe.engine_info["shapes"] == 8
     assert with_probe.engine_info["no_fit_polygons"] <= 16      # on its own sheet only
     assert without.engine_info["no_fit_polygons"] == 48
+
+
+def test_long_parts_cut_on_one_outline_at_their_own_vertices_share_a_shape():
+    """A shared-outline template: 6 m parts whose polylines cut one pair of outline curves at
+    their own vertices (0.2 mm apart at most) share their no-fit polygons at the grouping
+    tolerance of a 3 mm spacing (0.75 mm); sampled too coarsely (a bound above the tolerance),
+    every part would be a shape of its own."""
+    def curve(t):
+        return np.column_stack([6000.0 * t, 40.0 * np.sin(np.pi * t)])
+
+    records = []
+    for i in range(4):
+        t = np.sort(np.concatenate([[0.0, 1.0], np.linspace(0.0, 1.0, 21)[1:-1]
+                                    + 0.004 * np.sin(3.0 * i + np.arange(19))]))
+        a, b = curve(t), curve(t) + [0.0, 300.0]
+        outline = np.concatenate([a, b[::-1]])
+        records.append({"id": f"P{i}", "strip": i, "class": "C01", "outline": outline.tolist(),
+                        "geodesics": [a.tolist(), b.tolist()], "score": [],
+                        "label": [3000.0, 150.0]})
+    apart = max(Polygon(records[0]["outline"]).hausdorff_distance(Polygon(r["outline"]))
+                for r in records[1:])
+    assert 0.05 < apart < 0.75
+    parts = prepare_parts(records, 1.0, tol=0.75)
+    assert len({p.group for p in parts}) == 1
+    assert all(p.deviation <= 0.75 for p in parts)

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import shapely
+from scipy.spatial import cKDTree
 from shapely.geometry import Polygon
 
 from ..io.sheets import rotation_matrix, transform
@@ -126,8 +127,9 @@ def piece_outline(outline: np.ndarray) -> tuple[np.ndarray, float]:
     return coords, tol
 
 
-#: Most points an outline is cut into when two are compared (:func:`_rings_apart`).
-MAX_SAMPLES = 4096
+#: Most points an outline is cut into when two are compared (:func:`_rings_apart`): a 6 m
+#: strip's outline at a quarter of a 0.75 mm grouping tolerance takes 64,000.
+MAX_SAMPLES = 1 << 17
 
 
 def _rings_apart(a: np.ndarray, b: np.ndarray, step: float, limit: float = np.inf) -> float:
@@ -154,8 +156,10 @@ def _rings_apart(a: np.ndarray, b: np.ndarray, step: float, limit: float = np.in
         return np.inf                                   # the vertices alone are too far
     pa = shapely.get_coordinates(shapely.segmentize(ra, step))
     pb = shapely.get_coordinates(shapely.segmentize(rb, step))
-    return float(max(shapely.distance(shapely.points(pa), rb).max(),
-                     shapely.distance(shapely.points(pb), ra).max())) + 0.5 * step
+    # a point of one outline lies within step/2 of a sample of it, and a sample's distance to
+    # the other outline's samples bounds its distance to that outline from above
+    return float(max(cKDTree(pb).query(pa)[0].max(),
+                     cKDTree(pa).query(pb)[0].max())) + 0.5 * step
 
 
 def _match(part: Part, leader: Part, turns: list[float], tol: float, centroid: dict,
