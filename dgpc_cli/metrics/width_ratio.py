@@ -9,20 +9,30 @@ import numpy as np
 from dgpc_cli.metrics.curvature import strip_widths
 
 
+def strip_width_ratios(f, keep: np.ndarray | None = None) -> np.ndarray:
+    """``(n−1,)``: per strip of the net ``f (m, n, 3)``, its widest over its narrowest width
+    over the v-edges where ``keep (m, n−1)`` is True (default: all); NaN for a strip with fewer
+    than two kept edges, inf where a kept width is zero."""
+    w = strip_widths(f)
+    keep = np.ones(w.shape, bool) if keep is None else np.asarray(keep, bool)
+    big = np.where(keep, w, -np.inf).max(axis=0)
+    small = np.where(keep, w, np.inf).min(axis=0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(small > 0, big / np.where(small > 0, small, 1.0), np.inf)
+    return np.where(keep.sum(axis=0) >= 2, ratio, np.nan)
+
+
 def width_figures(f, keep: np.ndarray | None = None) -> dict | None:
     """``{"width_ratio": the largest over the strips of max/min width along the strip,
     "narrowest": the narrowest width / the mean width}`` of the net ``f (m, n, 3)``, over the
     v-edges where ``keep (m, n−1)`` is True (default: all; a strip with fewer than two kept
     edges is left out of the ratio). None when no strip has two kept edges or a kept width is
     zero."""
+    ratio = strip_width_ratios(f, keep)
+    counted = ratio[~np.isnan(ratio)]
+    if not counted.size or not np.isfinite(counted).all():
+        return None
     w = strip_widths(f)
     keep = np.ones(w.shape, bool) if keep is None else np.asarray(keep, bool)
-    counted = keep.sum(axis=0) >= 2
-    if not counted.any():
-        return None
-    big = np.where(keep, w, -np.inf).max(axis=0)[counted]
-    small = np.where(keep, w, np.inf).min(axis=0)[counted]
-    if not (small > 0).all():
-        return None
-    return {"width_ratio": float((big / small).max()),
+    return {"width_ratio": float(counted.max()),
             "narrowest": float(w[keep].min() / w[keep].mean())}

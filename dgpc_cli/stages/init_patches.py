@@ -32,7 +32,7 @@ import numpy as np
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.mesh import ReferenceMesh, clean_mesh, write_mesh_obj
 from dgpc_cli.io.net import NetArtifact
-from dgpc_cli.metrics.curvature import strip_widths
+from dgpc_cli.metrics.width_ratio import strip_width_ratios
 from dgpc_cli.surfaces.patches import Patch, bisect, order_patches, split
 
 log = logging.getLogger(__name__)
@@ -60,12 +60,8 @@ def width_ratio(f: np.ndarray, mesh: ReferenceMesh) -> dict:
     on, _ = surface.closest(P)
     edge = float(np.mean(np.linalg.norm(np.diff(f, axis=1), axis=-1)))
     near = (np.linalg.norm(P - on, axis=1) <= ON_REFERENCE * edge).reshape(m, n)
-    w = strip_widths(f)                                         # (m, n - 1)
-    rows = near[:, :-1] & near[:, 1:]
-    hi = np.where(rows, w, -np.inf).max(axis=0)
-    lo = np.where(rows, w, np.inf).min(axis=0)
-    enough = (rows.sum(axis=0) >= 2) & (lo > 0)
-    per_strip = np.where(enough, hi / np.where(enough, lo, 1.0), np.nan)
+    ratios = strip_width_ratios(f, near[:, :-1] & near[:, 1:])
+    per_strip = np.where(np.isfinite(ratios), ratios, np.nan)
     if not np.isfinite(per_strip).any():
         return {"ratio": None, "strip": None, "per_strip": [None] * (n - 1)}
     j = int(np.nanargmax(per_strip))
