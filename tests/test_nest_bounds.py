@@ -129,3 +129,24 @@ def test_spyrrow_sheets_take_boards_nearly_as_long_as_the_sheet():
                         time_limit=1)
     assert result.sheet_count == 2
     _overlap_free(result)
+
+
+def test_sections_that_fill_the_line_add_up_though_their_count_fits():
+    """The demo's boards in small: eight 600 × 112 mm boards (four fill the line across a
+    1000 × 500 sheet: 4 × 112 + 9 ≤ 480) and two shorter boards whose slanted ends cross it
+    with 25 mm. Counted, five sections fit across the line (two ends and three boards), so two
+    sheets; added up, the sections and their spacing are 976 mm for 2 × 483 of line, so three
+    sheets, and the fill takes exactly three."""
+    slanted = [[0, 0], [260, 0], [400, 0], [520, 100], [260, 100], [120, 100]]
+    records = ([_record(i, _rectangle(600.0, 112.0)) for i in range(8)]
+               + [_record(8 + i, slanted) for i in range(2)])
+    parts = prepare_parts(records, 1.0)
+    bound = sheet_lower_bounds(parts, 1000.0, 500.0, 10.0, 3.0, ROT)
+    assert bound == {"area": 2, "centre_line": 3, "sheets": 3}
+    counted = sorted(min(_least_section(p, r, 1000.0, 10.0 + 1e-4) for r in ROT)
+                     for p in parts)
+    assert counted[:2] == pytest.approx([25.0, 25.0], abs=0.01)
+    assert sum(counted[:5]) + 4 * 3.0 <= 500.0 - 2 * 10.0 < sum(counted[:6]) + 5 * 3.0
+    result = nest_parts(records, Sheet(1000.0, 500.0, 10.0, 3.0), ROT)
+    assert result.sheet_count == 3
+    _overlap_free(result)

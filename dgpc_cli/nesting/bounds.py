@@ -62,4 +62,7 @@ def sheet_lower_bounds(parts: list[Part], width: float, height: float, margin: f
             break
         k, used = k + 1, used + spacing + s
     line = math.ceil(len(sections) / k) if sections and k else 0
+    if sections and k:
+        total = (sum(sections) + spacing * len(sections)) / (inner + spacing)
+        line = max(line, math.ceil(total - 1e-9))
     return {"area": area, "centre_line": line, "sheets": max(area, line)}
