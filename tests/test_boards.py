@@ -15,6 +15,10 @@ from dgpc_cli.io.flat import read_flat
 from dgpc_cli.io.net import NetArtifact, read_net, write_net
 from dgpc_cli.io.sheets import read_sheets
 from dgpc_cli.io.strips import read_strips, strips_files
+from dgpc_cli.nesting.blf import Sheet
+from dgpc_cli.nesting.bounds import sheet_lower_bounds
+from dgpc_cli.nesting.geometry import transform
+from dgpc_cli.stages.nest import nest_parts
 from dgpc_cli.strips.boards import board_extent, split_boards
 from dgpc_cli.strips.develop import develop_strip
 from dgpc_cli.strips.trim import strip_points
@@ -139,6 +143,34 @@ def test_boards_nest_on_6100_by_2500_sheets(roof, tmp_path):
     res = dgpc("nest", roof / "whole", "--sheet", "6100x2500", "-o", tmp_path / "no", expect=1)
     assert "does not fit" in res.stderr
 
+
+
+def test_boards_of_templates_share_their_shapes_and_nest_at_the_bound(roof):
+    """The roof's 36 boards are copies of 12 templates: the nester takes them as 12 shapes
+    (one no-fit polygon per pair of shapes and relative rotation, never one per pair of
+    boards), and fills 7000 × 1250 mm sheets up to the lower bound: every board longer than
+    half the sheet crosses its centre line, one a sheet."""
+    flat = read_flat(roof / "boards")
+    sheet = Sheet(7000.0, 1250.0, 10.0, 3.0)
+    result = nest_parts(flat.parts, sheet, [0.0, 180.0], units=flat.units)
+    info = result.engine_info
+    assert len(flat.parts) == 36 and len(flat.classes) == 12
+    assert info["shapes"] == 12
+    assert info["no_fit_polygons"] <= 2 * 12 * 12
+    by_class = defaultdict(set)
+    for p in result.parts:
+        by_class[p.cls].add(p.group)
+    assert all(len(groups) == 1 for groups in by_class.values())
+    bound = sheet_lower_bounds(result.parts, sheet.width, sheet.height, sheet.margin,
+                               sheet.spacing, [0.0, 180.0])
+    assert result.sheet_count == bound["sheets"] > bound["area"]
+    placed = [Polygon(transform(result.parts[q.index].outline, q.rotation, q.translation))
+              for q in result.placements]
+    on = [q.sheet for q in result.placements]
+    for i in range(len(placed)):
+        for j in range(i + 1, len(placed)):
+            if on[i] == on[j]:
+                assert placed[i].distance(placed[j]) >= sheet.spacing - 1e-6
 
 @pytest.mark.parametrize("args, code, names", [
     (["--stock-length", 0], 2, "--stock-length"),
