@@ -49,6 +49,7 @@ def fabrication_metrics(f: np.ndarray, units: str, records: list[dict], geometry
     all in ``units``; ``reference`` (a ``core.reference.ReferenceSurface`` in ``units``) the
     outline the trimmed strips were clipped to (their end gaps are measured to it, their
     areas against its area)."""
+    from dgpc_cli.strips.cut_edges import edges_between
     from dgpc_cli.strips.develop import develop_strip, signed_area
     from dgpc_cli.strips.trim import strip_points
 
@@ -57,6 +58,12 @@ def fabrication_metrics(f: np.ndarray, units: str, records: list[dict], geometry
                                   zip(records, geometry, strict=True)])
     part_gaps, part_areas, outline_area = {}, {}, None
     trimmed = [(r, A, B) for r, (A, B) in zip(records, geometry, strict=True) if "trim" in r]
+    for r, (A, B) in zip(records, geometry, strict=True):
+        if "cut_edges" in r and "trim" not in r:      # cut along a template's curved edges
+            dev = develop_strip(A, B)
+            a, b = edges_between(dev.A, dev.B, (r["cut_edges"]["A"], r["cut_edges"]["B"]), 0,
+                                 len(A) - 1)
+            part_areas[r["id"]] = [abs(signed_area(np.concatenate([a, b[::-1]])))]
     if trimmed and reference is not None:
         for r, A, B in trimmed:
             rings = [np.asarray(p["outline"], float) for p in r["trim"]["parts"]]

@@ -117,6 +117,9 @@ class TemplateFit:
     iterations: int
     R: float
     developments: np.ndarray | None = None
+    #: With a shared outline its two curves in the developments' frame: ``(y0, h, c (2, d+1))``,
+    #: curve j (0: side A, 1: side B) ``x = Σ_k c_(j,k) T_k((y − y0) / h)``.
+    outline: tuple | None = None
 
 
 def closest_on_polylines(X: np.ndarray, P: np.ndarray) -> tuple[np.ndarray, np.ndarray,
@@ -425,11 +428,15 @@ class TemplateProblem:
         A1, B1 = bend_template(template, *layout.strips(result.x))
         s, c = self.scale, self.center
         devs = template if layout.outline_degree > 0 else None
+        curves = None if outline is None else (
+            outline[0] / s, outline[1] / s,
+            result.x[layout.c_offset:layout.slack_offset].reshape(2, -1) / s)
         return TemplateFit(A=A1 / s + c, B=B1 / s + c,
                            template=(template if devs is None else devs[0]) / s,
                            variant=self.variant, status=result.status,
                            iterations=iterations, R=result.R / s,
-                           developments=None if devs is None else devs / s)
+                           developments=None if devs is None else devs / s,
+                           outline=curves)
 
 
 def fit_template(f: np.ndarray, columns: list[int], A0: np.ndarray, B0: np.ndarray, *,
