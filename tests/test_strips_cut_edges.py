@@ -1,0 +1,136 @@
+"""Cut edges of a shared-outline template (issue "Strips that build the design": one class per
+patch, outlines identical to 0.01 mm): strips with their own rulings on two shared outline
+curves, bent into space, are cut along the curves sampled at the same points, so their
+developed outlines agree to round-off, and every sample lies in the plane of its quad."""
+
+import numpy as np
+import pytest
+
+from dgpc_cli.stages.unfold import unfold_strips
+from dgpc_cli.strips.congruence import align
+from dgpc_cli.strips.cut_edges import (
+    SAG_MM,
+    curve_samples,
+    curve_x,
+    edges_between,
+    inverse_bilinear,
+    template_cut_edges,
+)
+from dgpc_cli.strips.develop import develop_strip
+from dgpc_cli.strips.template import bend_template
+from dgpc_cli.strips.trim import strip_points
+
+M, S = 9, 4
+#: Two outline curves (mm): x = Σ c_k T_k((y − y0) / h), a strip 2 m long and 300 mm wide
+#: whose sides bow by about 20 mm.
+CURVES = (-1000.0, 1100.0, np.array([[0.0, 0.0, 20.0, 3.0], [300.0, 0.0, -15.0, 2.0]]))
+
+
+def _developments():
+    """S developments ``(S, M, 2, 2)`` with their own rulings on the shared curves, the ends
+    shared: the ruling ends at y spaced unevenly, differently for each strip."""
+    rng = np.random.default_rng(3)
+    base = np.linspace(0.0, -2000.0, M)
+    devs = []
+    for _ in range(S):
+        y = base.copy()
+        y[1:-1] += rng.uniform(-60.0, 60.0, (M - 2))
+        yb = base.copy()
+        yb[1:-1] += rng.uniform(-60.0, 60.0, (M - 2))
+        devs.append(np.stack([np.stack([curve_x(CURVES, y, 0), y], -1),
+                              np.stack([curve_x(CURVES, yb, 1), yb], -1)], axis=1))
+    return np.stack(devs)
+
+
+def _bent(devs):
+    """Exact bendings of the developments into space: each quad turned about its ruling
+    towards a cylinder of radius 3 m (:func:`bend_template` onto the lifted strips)."""
+    lifted = np.concatenate([devs, np.zeros(devs.shape[:-1] + (1,))], axis=-1)
+    y = lifted[..., 1]
+    lifted[..., 1] = 3000.0 * np.sin(y / 3000.0)
+    lifted[..., 2] = 3000.0 * (1.0 - np.cos(y / 3000.0))
+    return bend_template(devs, lifted[:, :, 0], lifted[:, :, 1])
+
+
+@pytest.fixture(scope="module")
+def bent():
+    devs = _developments()
+    A, B = _bent(devs)
+    return devs, A, B, template_cut_edges(devs, CURVES)
+
+
+def test_the_bending_is_exact_and_really_bent(bent):
+    devs, A, B, _ = bent
+    for s in range(S):
+        d = develop_strip(A[s], B[s])
+        assert align(d.A, d.B, devs[s, :, 0], devs[s, :, 1]).error <= 1e-8
+    assert np.ptp(A[..., 2]) > 100.0
+
+
+def test_cut_outlines_are_identical_and_polylines_are_not(bent):
+    """The parts cut along the sampled curves agree to round-off; cut along their own ruling
+    ends (the polylines A, B) they differ by the curves' sag, more than 0.01 mm."""
+    _, A, B, cuts = bent
+    devs = [develop_strip(a, b) for a, b in zip(A, B, strict=True)]
+    edges = [edges_between(d.A, d.B, cut, 0, M - 1) for d, cut in zip(devs, cuts, strict=True)]
+    assert all(len(e[0]) == len(edges[0][0]) for e in edges)
+    assert max(align(*e, *edges[0]).error for e in edges) <= 1e-6
+    assert max(align(d.A, d.B, devs[0].A, devs[0].B).error for d in devs) > 0.01
+
+
+def test_samples_lie_on_the_curves_within_the_sag_and_in_their_quads_planes(bent):
+    devs, A, B, cuts = bent
+    ends = np.stack([devs[0, 0], devs[0, -1]])
+    samples = curve_samples(CURVES, ends, M)
+    for j in (0, 1):
+        mid = 0.5 * (samples[j, 1:] + samples[j, :-1])
+        assert np.abs(curve_x(CURVES, mid[:, 1], j) - mid[:, 0]).max() <= SAG_MM
+    for s in range(S):
+        for j, ts in enumerate(cuts[s]):
+            # the development in the curves' frame maps them back onto the samples
+            assert np.abs(strip_points(devs[s, :, 0], devs[s, :, 1], ts)
+                          - samples[j, 1:-1]).max() <= 1e-8
+            # in space: in the plane of the quad floor(t), at the distances from its corners
+            # that the development has
+            u = np.floor(ts[:, 0]).astype(int)
+            p3 = strip_points(A[s], B[s], ts)
+            p2 = samples[j, 1:-1]
+            for corners3, corners2 in (((A[s][u], A[s][u + 1]), (devs[s, u, 0], devs[s, u + 1, 0])),
+                                       ((B[s][u], B[s][u + 1]), (devs[s, u, 1], devs[s, u + 1, 1]))):
+                for c3, c2 in zip(corners3, corners2, strict=True):
+                    assert np.abs(np.linalg.norm(p3 - c3, axis=1)
+                                  - np.linalg.norm(p2 - c2, axis=1)).max() <= 1e-8
+            n = np.cross(A[s][u + 1] - A[s][u], B[s][u] - A[s][u])
+            n /= np.linalg.norm(n, axis=1)[:, None]
+            assert np.abs(np.einsum("kj,kj->k", p3 - A[s][u], n)).max() <= 1e-8
+
+
+def test_inverse_bilinear_round_trip():
+    A = np.array([[0.0, 0.0], [100.0, 5.0], [210.0, 0.0]])
+    B = np.array([[10.0, 50.0], [95.0, 60.0], [200.0, 48.0]])
+    ts = np.array([[0.3, -0.01], [0.8, 1.02], [1.5, 0.5], [1.99, 0.0]])
+    u = np.floor(ts[:, 0]).astype(int)
+    p = strip_points(A, B, ts)
+    back = inverse_bilinear(A, B, u, p, np.stack([np.full(4, 0.5), np.full(4, 0.5)], -1))
+    assert back == pytest.approx(ts, abs=1e-12)
+
+
+def test_unfold_cuts_along_the_edges_whole_and_in_boards(bent):
+    """unfold: one class within 1e-6 mm with the cut edges (several without); boards cut at
+    rulings keep the curved edges, their outlines starting and ending on the ruling ends."""
+    _, A, B, cuts = bent
+    geometry = list(zip(A, B, strict=True))
+    ids = [f"S-v{v:02d}" for v in range(S)]
+    records = [{"A": a, "B": b} for a, b in cuts]
+    parts, classes, _ = unfold_strips(geometry, ids, list(range(S)), congruence_tol=0.01,
+                                      cut_edges=records)
+    assert len(classes) == 1 and classes[0]["max_deviation_mm"] <= 1e-6
+    assert all("edges" in p and len(p["outline"]) > 2 * M for p in parts)
+    _, plain, _ = unfold_strips(geometry, ids, list(range(S)), congruence_tol=0.01)
+    assert len(plain) > 1
+    parts, _, _ = unfold_strips(geometry, ids, list(range(S)), congruence_tol=0.01,
+                                cut_edges=records, stock_length=900.0, stagger=0.0)
+    assert all(len(p["edges"][0]) > p["rows"][1] - p["rows"][0] + 1 for p in parts)
+    for p in parts:
+        for g, e in zip(p["geodesics"], p["edges"], strict=True):
+            assert np.asarray(e)[[0, -1]] == pytest.approx(np.asarray(g)[[0, -1]], abs=1e-12)
