@@ -95,11 +95,10 @@ def test_samples_lie_on_the_curves_within_the_sag_and_in_their_quads_planes(bent
             u = np.floor(ts[:, 0]).astype(int)
             p3 = strip_points(A[s], B[s], ts)
             p2 = samples[j, 1:-1]
-            for corners3, corners2 in (((A[s][u], A[s][u + 1]), (devs[s, u, 0], devs[s, u + 1, 0])),
-                                       ((B[s][u], B[s][u + 1]), (devs[s, u, 1], devs[s, u + 1, 1]))):
-                for c3, c2 in zip(corners3, corners2, strict=True):
-                    assert np.abs(np.linalg.norm(p3 - c3, axis=1)
-                                  - np.linalg.norm(p2 - c2, axis=1)).max() <= 1e-8
+            for c3, c2 in ((A[s][u], devs[s, u, 0]), (A[s][u + 1], devs[s, u + 1, 0]),
+                           (B[s][u], devs[s, u, 1]), (B[s][u + 1], devs[s, u + 1, 1])):
+                assert np.abs(np.linalg.norm(p3 - c3, axis=1)
+                              - np.linalg.norm(p2 - c2, axis=1)).max() <= 1e-8
             n = np.cross(A[s][u + 1] - A[s][u], B[s][u] - A[s][u])
             n /= np.linalg.norm(n, axis=1)[:, None]
             assert np.abs(np.einsum("kj,kj->k", p3 - A[s][u], n)).max() <= 1e-8
@@ -134,3 +133,33 @@ def test_unfold_cuts_along_the_edges_whole_and_in_boards(bent):
     for p in parts:
         for g, e in zip(p["geodesics"], p["edges"], strict=True):
             assert np.asarray(e)[[0, -1]] == pytest.approx(np.asarray(g)[[0, -1]], abs=1e-12)
+
+
+def _artifact(A, B, cuts):
+    from dgpc_cli.io.strips import StripsArtifact
+
+    records = [{"id": f"S-v{v:02d}", "v": v, "rows": M, "planarity": 0.0, "deviation": 0.0,
+                "width": 300.0, "ruling_directions": np.tile([0.0, 0.0, 1.0], (M, 1)),
+                "flat_rows": [False] * M, "params": np.zeros((M, 2)),
+                "polish": {"applied": False}, "cut_edges": {"A": a, "B": b}}
+               for v, (a, b) in enumerate(cuts)]
+    return StripsArtifact(geometry=list(zip(A, B, strict=True)), records=records,
+                          source_shape=(M, S + 1), units="mm")
+
+
+def test_strips_artifact_keeps_the_cut_edges_and_rejects_them_beyond_the_ends(bent, tmp_path):
+    from dgpc_cli.errors import DgpcError
+    from dgpc_cli.io.atomic import write_files
+    from dgpc_cli.io.strips import read_strips, strips_files
+
+    _, A, B, cuts = bent
+    write_files(strips_files(tmp_path / "s", _artifact(A, B, cuts)))
+    back = read_strips(tmp_path / "s")
+    for r, (a, b) in zip(back.records, cuts, strict=True):
+        assert np.asarray(r["cut_edges"]["A"]) == pytest.approx(a, abs=0)
+        assert np.asarray(r["cut_edges"]["B"]) == pytest.approx(b, abs=0)
+    bad = [(a, b.copy()) for a, b in cuts]
+    bad[1][1][0, 0] = M - 1.0
+    write_files(strips_files(tmp_path / "bad", _artifact(A, B, bad)))
+    with pytest.raises(DgpcError, match=r"strips\[1\]\.cut_edges\.B\[0\].*strictly between"):
+        read_strips(tmp_path / "bad")

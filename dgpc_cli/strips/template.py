@@ -33,8 +33,10 @@ Variant ``shared-vertices``: the template's vertices, hence its rulings (score l
 same on every strip. Variant ``shared-outline``: every strip has its own development (its own
 score lines) whose boundary vertices lie on two outline curves shared by all strips (Chebyshev
 polynomials of low degree in the template's frame), with the end edges shared: one outline to
-cut, each copy scored for its own bending. Its strips' polylines differ by the curves' sag
-between neighbouring vertices (hundredths of a millimetre on the pipelines' walls).
+cut, each copy scored for its own bending. Its strips' polylines would differ by the curves'
+sag between neighbouring vertices, so the fit returns the curves too
+(:attr:`TemplateFit.outline`) and every strip is cut along them, sampled at the same points
+(:mod:`dgpc_cli.strips.cut_edges`).
 """
 
 from __future__ import annotations
