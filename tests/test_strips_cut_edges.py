@@ -163,3 +163,12 @@ def test_strips_artifact_keeps_the_cut_edges_and_rejects_them_beyond_the_ends(be
     write_files(strips_files(tmp_path / "bad", _artifact(A, B, bad)))
     with pytest.raises(DgpcError, match=r"strips\[1\]\.cut_edges\.B\[0\].*strictly between"):
         read_strips(tmp_path / "bad")
+
+
+def test_no_cut_edges_when_a_boundary_turns_back(bent):
+    """A development whose ruling ends do not run along the curves in order has no quad for
+    its samples: no cut edges (the parts are cut along their polylines)."""
+    devs = _developments()
+    devs[2, [3, 4]] = devs[2, [4, 3]]
+    assert template_cut_edges(devs, CURVES) is None
+    assert template_cut_edges(_developments(), CURVES) is not None

@@ -312,8 +312,8 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
     cuts = (None if fit.outline is None or fit.developments is None else
             template_cut_edges(fit.developments, fit.outline))
     if fit.outline is not None and cuts is None:
-        log.warning("planarize-strips: a strip's boundary turns back along the template's "
-                    "outline; its parts are cut along their polylines")
+        log.warning("planarize-strips: a strip's ruling ends do not follow the template's "
+                    "outline curves in order; the parts are cut along their polylines")
     out = []
     for i, strip in enumerate(strips):
         a, b = fit.A[i], fit.B[i]

@@ -135,13 +135,17 @@ def template_cut_edges(developments: np.ndarray, curves: tuple) -> list | None:
     in the curves' frame, mm) and its ``curves`` (:attr:`~.template.TemplateFit.outline`), each
     strip's interior cut-edge samples ``(ts_A, ts_B)``, the same curve points for every strip
     (:func:`curve_samples` between the first development's end vertices, which every strip
-    shares); None when a strip's boundary does not run forward along the curves."""
+    shares); None when a strip's boundary does not run monotonically along the curves or a
+    sample is not reached in its quad."""
     devs = np.asarray(developments, float)
     ends = np.stack([devs[0, 0], devs[0, -1]])                           # (2, 2 sides, 2)
     samples = curve_samples(curves, ends, devs.shape[1])
     out = []
     for dev in devs:
-        cut = strip_cut_edges(dev, samples)
+        try:
+            cut = strip_cut_edges(dev, samples)
+        except ValueError:
+            return None
         if cut is None:
             return None
         out.append(cut)
