@@ -172,3 +172,19 @@ def test_no_cut_edges_when_a_boundary_turns_back(bent):
     devs[2, [3, 4]] = devs[2, [4, 3]]
     assert template_cut_edges(devs, CURVES) is None
     assert template_cut_edges(_developments(), CURVES) is not None
+
+
+def test_report_overlays_the_cut_outlines(bent):
+    """The template figure's data (paper Fig. 18 bottom-right) measures and draws the outlines
+    the parts are cut along: equal to round-off with cut edges, the curves' sag without."""
+    from dgpc_cli.stages.strip_fabrication import figure_data
+
+    _, A, B, cuts = bent
+    f = np.concatenate([np.moveaxis(A, 0, 1), B[-1:].swapaxes(0, 1)], axis=1)   # (M, S+1, 3)
+    art = _artifact(A, B, cuts)
+    data = figure_data(art, f)
+    assert data.template_error <= 1e-6
+    assert all(len(a) == len(data.outlines[0][0]) > M for a, _ in data.outlines)
+    for r in art.records:
+        del r["cut_edges"]
+    assert figure_data(art, f).template_error > 0.01
