@@ -86,7 +86,8 @@ def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, 
         geometry, [r["id"] for r in strips.records], [r["v"] for r in strips.records],
         congruence_tol=congruence_tol.to_mm(units), mirror_ok=mirror_ok,
         stock_length=stock_mm, stagger=stagger_mm, source=json_path,
-        trims=[r.get("trim") for r in strips.records])
+        trims=[r.get("trim") for r in strips.records],
+        cut_edges=[r.get("cut_edges") for r in strips.records])
     for line in scale_warnings(parts, geometry, units, stock_length):
         log.warning("%s: %s", json_path, line)
     templates = template_dxfs(parts, classes, label_style)

@@ -169,7 +169,13 @@ def _obj_bytes(parts: list) -> bytes:
                             [(p["id"], np.asarray(p["geodesics"][0], float),
                               np.asarray(p["geodesics"][1], float)) for p in parts],
                             outlines={p["id"]: (p["outline"], p["score"]) for p in parts
-                                      if p.get("trimmed")})
+                                      if _drawn_as_outline(p)})
+
+
+def _drawn_as_outline(part: dict) -> bool:
+    """Whether the part's OBJ object is its outline and score lines (a part trimmed to the
+    reference's outline, or cut along a template's curved edges) rather than its quads."""
+    return bool(part.get("trimmed")) or "edges" in part
 
 
 def csv_path(stem: str | Path, name: str = "parts") -> Path:
@@ -211,6 +217,7 @@ def _check_part_points(parts: list[dict], json_path: Path) -> None:
         fields = [("outline", part["outline"]), ("label", [part["label"]])]
         fields += [(f"score[{j}]", s) for j, s in enumerate(part["score"])]
         fields += [(f"geodesics[{j}]", g) for j, g in enumerate(part["geodesics"])]
+        fields += [(f"edges[{j}]", g) for j, g in enumerate(part.get("edges", []))]
         for name, points in fields:
             points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
             bad = bad_rows(points)
@@ -223,7 +230,7 @@ def _check_part_points(parts: list[dict], json_path: Path) -> None:
 def _obj_vertices(part: dict) -> int:
     """Vertices of a part's OBJ object: 2 per row, or for a part trimmed to the reference's
     outline those of its outline and score lines."""
-    if part.get("trimmed"):
+    if _drawn_as_outline(part):
         return len(part["outline"]) + sum(len(line) for line in part["score"])
     return 2 * len(part["geodesics"][0])
 

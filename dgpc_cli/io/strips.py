@@ -3,7 +3,10 @@
 The OBJ holds one object per strip (``o S-v07``) with its 2m vertices in the order
 A_0 B_0 A_1 B_1 … (A on the geodesic v, B on v+1), the planar quads A_u A_(u+1) B_(u+1) B_u and
 the rulings A_u B_u as lines. The JSON ``data.strips`` lists the strips in the OBJ's order with
-what the OBJ cannot hold (quality, ruling directions, flat rows, polish outcome).
+what the OBJ cannot hold (quality, ruling directions, flat rows, polish outcome, and for a
+shared-outline template the ``cut_edges``: the template's outline curves sampled in the strip's
+``(t, s)``, identical for every strip, which ``unfold`` cuts along; older files without them
+are cut along A and B).
 """
 
 from __future__ import annotations
@@ -125,6 +128,21 @@ def strips_files(stem: str | Path, art: StripsArtifact) -> dict[Path, bytes]:
                           parameters=art.parameters, metrics=art.metrics, status=art.status)
 
 
+def _check_cut_edges(records: list[dict], json_path: Path) -> None:
+    """Every strip's cut-edge samples (``cut_edges``, a shared-outline template's curves in the
+    strip's ``(t, s)``) finite and strictly between its end rows; DgpcError naming the first
+    one that is not."""
+    for i, r in enumerate(records):
+        for side in ("A", "B") if "cut_edges" in r else ():
+            ts = np.asarray(r["cut_edges"][side], float).reshape(-1, 2)
+            bad = np.nonzero(~np.isfinite(ts).all(axis=1) | (ts[:, 0] <= 0)
+                             | (ts[:, 0] >= r["rows"] - 1))[0]
+            if bad.size:
+                raise DgpcError(f"data.strips[{i}].cut_edges.{side}[{int(bad[0])}]: t must lie "
+                                f"strictly between 0 and {r['rows'] - 1} (the end rows)",
+                                source=json_path)
+
+
 @reread
 def read_strips(stem: str | Path) -> StripsArtifact:
     """Read and validate a strips artifact (envelope, schema, OBJ hash and vertex counts)."""
@@ -137,6 +155,7 @@ def read_strips(stem: str | Path) -> StripsArtifact:
     check_obj_objects(parse_obj(obj_bytes, obj_path), [(r["id"], 2 * r["rows"]) for r in records],
                       obj_path, "data.strips")
     geometry = parse_parts_obj(obj_bytes, [r["rows"] for r in records], obj_path)
+    _check_cut_edges(records, json_path)
     return StripsArtifact(geometry=geometry, records=records,
                           source_shape=tuple(data["source_shape"]), units=data["units"],
                           parameters=doc["parameters"], inputs=doc["inputs"],

@@ -47,10 +47,12 @@ def _scale_bar(ax, span: float, y: float) -> None:
 
 
 def template_overlay_figure(parts: list[tuple[str, np.ndarray, np.ndarray]], *,
-                            title: str):
+                            title: str, outlines: list | None = None):
     """The developed strips ``(id, A, B)`` (2-D, mm, already aligned on the template, the
     first one) overlaid: the whole strips on top, the two ends magnified below. Every outline
-    is one line with gid ``outline:<id>`` in the top axes (gid ``overlay``)."""
+    is one line with gid ``outline:<id>`` in the top axes (gid ``overlay``): the ring of A and
+    B, or of the edges ``outlines[k] = (A', B')`` each part is cut along when given (a
+    shared-outline template's curves); the rulings join A_u and B_u."""
     from matplotlib.lines import Line2D
 
     _, A0, B0 = parts[0]
@@ -70,7 +72,7 @@ def template_overlay_figure(parts: list[tuple[str, np.ndarray, np.ndarray]], *,
             for u in range(1, len(A) - 1):
                 ax.plot([A[u, 0], B[u, 0]], [A[u, 1], B[u, 1]], color=SCORE, lw=0.4,
                         alpha=0.5)
-            ring = _ring(A, B)
+            ring = _ring(*outlines[k]) if outlines is not None else _ring(A, B)
             line, = ax.plot(*ring.T, color=TEMPLATE if k == 0 else CUT,
                             lw=1.3 if k == 0 else 0.7, alpha=1.0 if k == 0 else 0.75,
                             zorder=3 if k == 0 else 2)

@@ -67,7 +67,9 @@ def flat_tags(stems: list[str | Path]) -> list[str]:
 
 
 def _geodesics(part: dict) -> tuple[np.ndarray, np.ndarray]:
-    A, B = part["geodesics"]
+    """The edges the part is cut along: its ``edges`` (a template's curves), else its
+    geodesics."""
+    A, B = part.get("edges", part["geodesics"])
     return np.asarray(A, float), np.asarray(B, float)
 
 

@@ -13,6 +13,7 @@ import numpy as np
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.strips import strip_id
+from dgpc_cli.strips.cut_edges import template_cut_edges
 from dgpc_cli.strips.polish import polish_strip
 from dgpc_cli.strips.quality import deviation, planarity_defect, strip_width
 from dgpc_cli.strips.rulings import (
@@ -87,6 +88,10 @@ class PlanarStrip:
     construction_planarity: float
     polish: dict
     rulings_ordered: bool
+    #: A shared-outline template's cut edges: the interior samples ``(ts_A, ts_B)`` of its
+    #: outline curves in the strip's ``(t, s)`` (:mod:`dgpc_cli.strips.cut_edges`); None where
+    #: the parts are cut along the polylines A and B.
+    cut_edges: tuple | None = None
 
     def in_units(self, units: str) -> PlanarStrip:
         """The strip computed in mm with its geometry, width and polish residual (a length)
@@ -104,7 +109,9 @@ class PlanarStrip:
                 "rulings_ordered": self.rulings_ordered,
                 "ruling_directions": self.directions, "flat_rows": self.flat.tolist(),
                 "limited_rows": self.limited.tolist(),
-                "params": self.params, "polish": self.polish}
+                "params": self.params, "polish": self.polish,
+                **({} if self.cut_edges is None else
+                   {"cut_edges": {"A": self.cut_edges[0], "B": self.cut_edges[1]}})}
 
 
 def parse_strip_range(text: str | None, n: int) -> list[int]:
@@ -302,6 +309,11 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
             f"{100 * margin:g} % apart)")}
     _, _, sA = closest_on_polylines(fit.A, P)
     _, _, sB = closest_on_polylines(fit.B, Q)
+    cuts = (None if fit.outline is None or fit.developments is None else
+            template_cut_edges(fit.developments, fit.outline))
+    if fit.outline is not None and cuts is None:
+        log.warning("planarize-strips: a strip's ruling ends do not follow the template's "
+                    "outline curves in order; the parts are cut along their polylines")
     out = []
     for i, strip in enumerate(strips):
         a, b = fit.A[i], fit.B[i]
@@ -309,7 +321,7 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
             strip, A=a, B=b, params=np.stack([sA[i], sB[i]], axis=-1),
             planarity=float(np.max(planarity_defect(a, b))),
             deviation=deviation(a, b, P[i], Q[i]) / strip.width,
-            rulings_ordered=True))
+            rulings_ordered=True, cut_edges=None if cuts is None else cuts[i]))
     record = {"variant": fit.variant, "start": start, "ruling_fairness": fairness,
               "max_ruling_turn": max_ruling_turn,
               "status": fit.status, "iterations": fit.iterations,

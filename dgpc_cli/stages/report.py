@@ -318,9 +318,10 @@ def _fabrication_figures(art, json_path: Path) -> list:
                      f"onto the template (the first strip, {data.developed[0][0]}) by the best "
                      "rigid motion of its outline; the ends magnified below.",
          lambda: template_overlay_figure(
-             data.developed, title=f"{counted(count, 'developed strip')} overlaid on the "
-                                   f"template {data.developed[0][0]}: outlines up to "
-                                   f"{error_text(data.template_error, 'mm')} apart")),
+             data.developed, outlines=data.outlines,
+             title=f"{counted(count, 'developed strip')} overlaid on the template "
+                   f"{data.developed[0][0]}: outlines up to "
+                   f"{error_text(data.template_error, 'mm')} apart")),
         ("deviation", "The strips in 3-D, each quad coloured by its largest distance from the "
                       "net strip (mm); the seams (the geodesics neighbouring strips share) in "
                       f"red where the two strips' copies step more than {mark:.3g} mm apart "

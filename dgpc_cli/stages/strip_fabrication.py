@@ -49,6 +49,7 @@ def fabrication_metrics(f: np.ndarray, units: str, records: list[dict], geometry
     all in ``units``; ``reference`` (a ``core.reference.ReferenceSurface`` in ``units``) the
     outline the trimmed strips were clipped to (their end gaps are measured to it, their
     areas against its area)."""
+    from dgpc_cli.strips.cut_edges import edges_between
     from dgpc_cli.strips.develop import develop_strip, signed_area
     from dgpc_cli.strips.trim import strip_points
 
@@ -57,6 +58,12 @@ def fabrication_metrics(f: np.ndarray, units: str, records: list[dict], geometry
                                   zip(records, geometry, strict=True)])
     part_gaps, part_areas, outline_area = {}, {}, None
     trimmed = [(r, A, B) for r, (A, B) in zip(records, geometry, strict=True) if "trim" in r]
+    for r, (A, B) in zip(records, geometry, strict=True):
+        if "cut_edges" in r and "trim" not in r:      # cut along a template's curved edges
+            dev = develop_strip(A, B)
+            a, b = edges_between(dev.A, dev.B, (r["cut_edges"]["A"], r["cut_edges"]["B"]), 0,
+                                 len(A) - 1)
+            part_areas[r["id"]] = [abs(signed_area(np.concatenate([a, b[::-1]])))]
     if trimmed and reference is not None:
         for r, A, B in trimmed:
             rings = [np.asarray(p["outline"], float) for p in r["trim"]["parts"]]
@@ -120,13 +127,17 @@ class FigureData:
     ``(id, A, B)`` in mm aligned on the first (the template) and the largest outline
     distance from it ``template_error`` (mm); per strip the deviation per quad (mm); the
     seams ``(X, step)``: each shared geodesic (strip v's B, in the artifact's unit) with the
-    step at its vertices (mm); the mean strip width (mm)."""
+    step at its vertices (mm); the mean strip width (mm); ``outlines`` the edges every
+    developed strip is cut along ``(A', B')``, aligned as ``developed`` (a shared-outline
+    template's curves, :mod:`dgpc_cli.strips.cut_edges`; A and B themselves without), which
+    ``template_error`` measures."""
 
     developed: list
     template_error: float
     deviation: list
     seams: list
     width: float
+    outlines: list | None = None
 
 
 def figure_data(art, f: np.ndarray) -> FigureData:
@@ -134,19 +145,25 @@ def figure_data(art, f: np.ndarray) -> FigureData:
     ``art.units``)."""
     from dgpc_cli.io.units import to_mm
     from dgpc_cli.strips.congruence import align
+    from dgpc_cli.strips.cut_edges import edges_between
     from dgpc_cli.strips.develop import develop_strip
 
     k = mm_per_unit(art.units)
     measures = measure_strips(f, [(r["v"], A, B) for r, (A, B) in
                                   zip(art.records, art.geometry, strict=True)])
     devs = [develop_strip(to_mm(A, art.units), to_mm(B, art.units)) for A, B in art.geometry]
-    developed, error = [], 0.0
-    for r, dev in zip(art.records, devs, strict=True):
-        al = align(dev.A, dev.B, devs[0].A, devs[0].B)
+    edges = [(dev.A, dev.B) if "cut_edges" not in r else
+             edges_between(dev.A, dev.B, (r["cut_edges"]["A"], r["cut_edges"]["B"]), 0,
+                           len(dev.A) - 1) for r, dev in zip(art.records, devs, strict=True)]
+    developed, outlines, error = [], [], 0.0
+    for r, dev, edge in zip(art.records, devs, edges, strict=True):
+        al = align(*edge, *edges[0])
         developed.append((r["id"], al.apply(dev.A), al.apply(dev.B)))
+        outlines.append(tuple(al.apply(e) for e in edge))
         error = max(error, al.error)
     seams = [(np.asarray(B, float), s.seams[s.v + 1][0] * k)
              for s, (_, B) in zip(measures, art.geometry, strict=True) if s.v + 1 in s.seams]
     return FigureData(developed=developed, template_error=error,
                       deviation=[s.deviation * k for s in measures], seams=seams,
-                      width=float(np.mean([s.width for s in measures])) * k)
+                      width=float(np.mean([s.width for s in measures])) * k,
+                      outlines=outlines)

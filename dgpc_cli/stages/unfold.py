@@ -9,6 +9,7 @@ artifact's unit.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 
 import numpy as np
@@ -20,6 +21,7 @@ from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.nesting.template import template_drawing
 from dgpc_cli.strips.boards import Board, cumulative, split_boards
 from dgpc_cli.strips.congruence import Alignment, congruence_classes
+from dgpc_cli.strips.cut_edges import edges_between
 from dgpc_cli.strips.develop import Development, develop_strip, signed_area
 from dgpc_cli.strips.trim import developed_part
 from dgpc_cli.strips.trimmed_boards import board_ring, split_trimmed
@@ -44,13 +46,26 @@ def part_widths(A: np.ndarray, B: np.ndarray) -> tuple[float, float]:
 
 def board_record(d: Development, name: str, column: int, number: int, rows: list[int],
                  positions: list[float]) -> dict:
-    """The part record (without class and alignment) of the developed strip or board ``d``."""
+    """The part record (without class and alignment) of the developed strip or board ``d``;
+    with cut edges (a shared-outline template) its ``edges`` too, the outline and the widths
+    taken along them."""
     return {"id": name, "strip": int(column), "board": int(number),
             "rows": [int(r) for r in rows], "positions": [float(x) for x in positions],
             "outline": d.outline, "score": d.rulings, "label": d.label_point,
             "geodesics": [d.A, d.B], "straightness": d.straightness, "strain": d.strain,
-            "length": d.length, "width": list(part_widths(d.A, d.B)),
-            "area": signed_area(d.outline)}
+            "length": d.length, "width": list(part_widths(*d.cut_edges)),
+            "area": signed_area(d.outline),
+            **({} if d.edges is None else {"edges": list(d.edges)})}
+
+
+def with_cut_edges(d: Development, cut: dict | None, r0: int, r1: int) -> Development:
+    """The development ``d`` of the rows ``r0..r1`` of a strip with the strip's cut edges
+    ``cut`` (its record's ``cut_edges``: the interior samples ``A``, ``B`` in the strip's
+    ``(t, s)``, :mod:`dgpc_cli.strips.cut_edges`) over those rows; ``d`` itself without."""
+    if cut is None:
+        return d
+    shifted = [np.asarray(cut[k], float).reshape(-1, 2) - [r0, 0.0] for k in ("A", "B")]
+    return dataclasses.replace(d, edges=edges_between(d.A, d.B, shifted, 0, r1 - r0))
 
 
 def _boards(geometry: list, devs: list[Development], ids: list[str], columns: list[int],
@@ -66,7 +81,8 @@ def _boards(geometry: list, devs: list[Development], ids: list[str], columns: li
 def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
                   congruence_tol: float = CONGRUENCE_TOL_MM, mirror_ok: bool = False,
                   stock_length: float | None = None, stagger: float | None = None,
-                  source: str | None = None, trims: list | None = None
+                  source: str | None = None, trims: list | None = None,
+                  cut_edges: list | None = None
                   ) -> tuple[list[dict], list[dict], list[dict]]:
     """Develop every strip ``(A, B)`` of ``geometry`` (mm), cut it into boards no longer than
     ``stock_length`` (mm; None: whole strips) with joints ``stagger`` apart (default a quarter
@@ -78,15 +94,19 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
     given, lists the parts of strip i inside the reference's outline (records with ``id`` and
     ``outline`` in the strip's ``(t, s)``): those are developed instead of the whole strip,
     each its own congruence class (their end cuts follow the outline); they are not cut into
-    boards.
+    boards. ``cut_edges[i]`` (a shared-outline template's ``cut_edges`` record), when given,
+    are the edges strip i is cut along instead of its polylines A and B
+    (:func:`with_cut_edges`): its outline, widths and congruence follow them.
     """
-    devs = [develop_strip(A, B) for A, B in geometry]
+    cut_edges = cut_edges or [None] * len(geometry)
+    devs = [with_cut_edges(develop_strip(A, B), cut, 0, len(A) - 1)
+            for (A, B), cut in zip(geometry, cut_edges, strict=True)]
     if trims is not None and any(t is not None for t in trims):
         if stock_length is not None:
             return trimmed_boards(geometry, devs, ids, columns, trims, congruence_tol,
                                   mirror_ok, stock_length, stagger, source)
         return _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_ok,
-                               source)
+                               source, cut_edges)
     folded = [ids[i] for i, d in enumerate(devs) if not Polygon(d.outline).is_valid]
     if folded:
         raise DgpcError(f"the developed outline of {', '.join(folded)} crosses itself (its "
@@ -95,10 +115,11 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
     boards = _boards(geometry, devs, ids, columns, stock_length, stagger)
     split = stock_length is not None
     names = [f"{ids[b.strip]}.{b.number}" if split else ids[b.strip] for b in boards]
-    pieces = [develop_strip(*(np.asarray(X, float)[b.start:b.stop + 1]
-                              for X in geometry[b.strip])) if split else devs[b.strip]
+    pieces = [with_cut_edges(develop_strip(*(np.asarray(X, float)[b.start:b.stop + 1]
+                                             for X in geometry[b.strip])),
+                             cut_edges[b.strip], b.start, b.stop) if split else devs[b.strip]
               for b in boards]
-    classes = congruence_classes([(d.A, d.B) for d in pieces], congruence_tol,
+    classes = congruence_classes([d.cut_edges for d in pieces], congruence_tol,
                                  [(columns[b.strip], b.number, names[i])
                                   for i, b in enumerate(boards)], mirror_ok=mirror_ok)
     along = [0.5 * (cumulative(np.asarray(A, float)) + cumulative(np.asarray(B, float)))
@@ -192,6 +213,7 @@ def records_in_units(parts: list[dict], classes: list[dict], joints: list[dict],
             "outline": geometry(p["outline"]),
             "score": [geometry(line) for line in p["score"]],
             "label": geometry(p["label"]), "geodesics": [geometry(g) for g in p["geodesics"]],
+            **({"edges": [geometry(g) for g in p["edges"]]} if "edges" in p else {}),
             "length": p["length"] / k, "width": [w / k for w in p["width"]],
             "area": p["area"] / k**2,
             "alignment": {**al, "translation": np.asarray(al["translation"]) / k,
@@ -210,14 +232,15 @@ def cuttable_part(A: np.ndarray, B: np.ndarray, ring: np.ndarray, name: str, sou
     return part
 
 
-def _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_ok, source):
+def _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_ok, source,
+                    cut_edges):
     """:func:`unfold_strips` for strips clipped to the reference's outline (mm)."""
     whole = [i for i, t in enumerate(trims) if t is None]
     if whole:
         parts, classes, _ = unfold_strips(
             [geometry[i] for i in whole], [ids[i] for i in whole],
             [columns[i] for i in whole], congruence_tol=congruence_tol, mirror_ok=mirror_ok,
-            source=source)
+            source=source, cut_edges=[cut_edges[i] for i in whole])
     else:
         parts, classes = [], []
     identity = Alignment.identity()

@@ -29,7 +29,9 @@ class Development:
     ``strain`` is the largest relative length change ``|ℓ₂ − ℓ₃| / ℓ₃`` over the edges and both
     diagonals of every quad; ``straightness (2,)`` the largest distance of each developed
     boundary geodesic from its chord over the geodesic's length; ``length`` the mean length of
-    the two geodesics.
+    the two geodesics. ``edges``, when given, are the cut edges along the two geodesics (a
+    shared-outline template's curves, :mod:`dgpc_cli.strips.cut_edges`) from A_0 to A_(m−1)
+    and B_0 to B_(m−1); else the part is cut along A and B.
     """
 
     A: np.ndarray
@@ -37,11 +39,19 @@ class Development:
     strain: float
     straightness: np.ndarray
     length: float
+    edges: tuple | None = None
+
+    @property
+    def cut_edges(self) -> tuple[np.ndarray, np.ndarray]:
+        """The two edges the part is cut along: ``edges``, else the geodesics A and B."""
+        return (self.A, self.B) if self.edges is None else self.edges
 
     @property
     def outline(self) -> np.ndarray:
-        """Closed outline ``(2m, 2)``, counter-clockwise: A forwards, then B backwards."""
-        ring = np.concatenate([self.A, self.B[::-1]])
+        """Closed outline, counter-clockwise: the cut edge along A forwards, then along B
+        backwards (``(2m, 2)`` without ``edges``)."""
+        a, b = self.cut_edges
+        ring = np.concatenate([a, b[::-1]])
         return ring if signed_area(ring) > 0 else ring[::-1]
 
     @property

@@ -33,8 +33,10 @@ Variant ``shared-vertices``: the template's vertices, hence its rulings (score l
 same on every strip. Variant ``shared-outline``: every strip has its own development (its own
 score lines) whose boundary vertices lie on two outline curves shared by all strips (Chebyshev
 polynomials of low degree in the template's frame), with the end edges shared: one outline to
-cut, each copy scored for its own bending. Its strips' polylines differ by the curves' sag
-between neighbouring vertices (hundredths of a millimetre on the pipelines' walls).
+cut, each copy scored for its own bending. Its strips' polylines would differ by the curves'
+sag between neighbouring vertices, so the fit returns the curves too
+(:attr:`TemplateFit.outline`) and every strip is cut along them, sampled at the same points
+(:mod:`dgpc_cli.strips.cut_edges`).
 """
 
 from __future__ import annotations
@@ -117,6 +119,9 @@ class TemplateFit:
     iterations: int
     R: float
     developments: np.ndarray | None = None
+    #: With a shared outline its two curves in the developments' frame: ``(y0, h, c (2, d+1))``,
+    #: curve j (0: side A, 1: side B) ``x = Σ_k c_(j,k) T_k((y − y0) / h)``.
+    outline: tuple | None = None
 
 
 def closest_on_polylines(X: np.ndarray, P: np.ndarray) -> tuple[np.ndarray, np.ndarray,
@@ -425,11 +430,15 @@ class TemplateProblem:
         A1, B1 = bend_template(template, *layout.strips(result.x))
         s, c = self.scale, self.center
         devs = template if layout.outline_degree > 0 else None
+        curves = None if outline is None else (
+            outline[0] / s, outline[1] / s,
+            result.x[layout.c_offset:layout.slack_offset].reshape(2, -1) / s)
         return TemplateFit(A=A1 / s + c, B=B1 / s + c,
                            template=(template if devs is None else devs[0]) / s,
                            variant=self.variant, status=result.status,
                            iterations=iterations, R=result.R / s,
-                           developments=None if devs is None else devs / s)
+                           developments=None if devs is None else devs / s,
+                           outline=curves)
 
 
 def fit_template(f: np.ndarray, columns: list[int], A0: np.ndarray, B0: np.ndarray, *,
