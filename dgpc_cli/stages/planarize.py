@@ -383,9 +383,8 @@ def trim_records(strips: list[PlanarStrip], reference) -> tuple[list[dict], list
     the outline cuts the strip into several parts), outline in ``(t, s)`` and in 3-D, the rows
     it spans — and what is dropped (``_trimmed``: the rows where a strip pinches below
     :data:`~dgpc_cli.strips.pinch.PINCH` of the parts' mean width (their area over their
-    length), slivers, parts shorter than
-    one quad, each with the area it leaves bare); plus one note per part dropped, one for the
-    pinched ends and one of the whole area left bare."""
+    length), slivers, parts shorter than one quad, each with the area it leaves bare); plus
+    one note per part dropped, one for the pinched ends and one of the whole area left bare."""
     found = [(s, develop_strip(s.A, s.B), trim_strip(s.A, s.B, reference)) for s in strips]
     length = sum(part_length(s.A, s.B, p.outline) for s, _, parts in found for p in parts)
     area = sum(part_area(d.A, d.B, p.outline) for _, d, parts in found for p in parts)
