@@ -13,6 +13,7 @@ from shapely.geometry import LineString, Point
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.stages.planarize import trim_records
+from dgpc_cli.stages.soundness import require_sound_strips
 from dgpc_cli.stages.unfold import part_narrowness
 from dgpc_cli.strips.boards import split_run
 from dgpc_cli.strips.develop import develop_strip, signed_area
@@ -141,3 +142,17 @@ def test_the_default_stagger_gives_way_where_no_ruling_keeps_it(caplog):
     assert all(extent(a, b) <= 6.0 for a, b in zip(cuts[:-1], cuts[1:], strict=True))
     assert joints == [2, 4, 6]
     assert "S-v01: 3 joint(s) (rows 2, 4, 6) nearer than the stagger 1.5" in caplog.text
+
+
+def test_a_fold_trimmed_away_does_not_stop_unfold():
+    """A strip folded in its first quad (A_0 pulled past A_1): refused as a whole strip and
+    when a part covers that quad; a part from row 1 on (the fold in the overhang) is cut."""
+    x = np.arange(6.0)
+    A = np.stack([x, np.zeros(6), np.zeros(6)], 1)
+    B = A + [0.0, 1.0, 0.0]
+    A[0, 0] = 2.0
+    with pytest.raises(DgpcError, match="S-v00 is folded"):
+        require_sound_strips([(A, B)], ["S-v00"], "s.json")
+    with pytest.raises(DgpcError, match="S-v00 is folded"):
+        require_sound_strips([(A, B)], ["S-v00"], "s.json", [[[0, 3], [4, 5]]])
+    require_sound_strips([(A, B)], ["S-v00"], "s.json", [[[1, 5]]])

@@ -79,7 +79,9 @@ def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, 
     json_path, _ = artifact_paths(stem)
     check_writable(output, force, csv_path(output), csv_path(output, "assembly"))
     strips = read_strips(stem)
-    require_sound_strips(strips.geometry, [r["id"] for r in strips.records], json_path)
+    require_sound_strips(strips.geometry, [r["id"] for r in strips.records], json_path,
+                         [[p["rows"] for p in r["trim"]["parts"]] if r.get("trim") else None
+                          for r in strips.records])
     units = strips.units                 # computed in mm (dgpc_cli.io.units)
     stock_mm = None if stock_length is None else stock_length.to_mm(units)
     stagger_mm = (None if stock_length is None else stagger.to_mm(units) if stagger is not None
