@@ -51,7 +51,8 @@ def parse_direction(text: str | None):
               help="With --surface: built-in profile name (below), or a CSV file with header "
                    "'r,h', its numbers in the unit of --units.")
 @click.option("--method", type=click.Choice(["geodesic", "project"]),
-              help="With REFERENCE (a triangle mesh, OBJ/PLY/STL/OFF): 'geodesic' traces "
+              help="With REFERENCE (a triangle mesh, OBJ/PLY/STL/OFF; default 'geodesic'): "
+                   "'geodesic' traces "
                    "geodesics orthogonally from a base curve (--base); 'project' projects a "
                    "planar grid onto the mesh along --direction (default: the mesh's overall "
                    "normal). Both keep the largest rectangle of the grid that lies on the "
@@ -139,7 +140,7 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
 
     \b
     dgpc init --surface revolution --profile NAME|FILE --rows M --cols N -o STEM
-    dgpc init MESH --method geodesic [--base auto|section|boundary|bK] [--direction x,y,z]
+    dgpc init MESH [--method geodesic] [--base auto|section|boundary|bK] [--direction x,y,z]
               [--angle DEG] [--rows M] [--cols N|--edge-length L] [--extend F] -o STEM
     dgpc init MESH --method project [--direction x,y,z] [--angle DEG] [--rows M]
               [--cols N|--edge-length L] [--extend F] -o STEM
@@ -150,6 +151,8 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     length. With a mesh, the net records it (path and sha256) as the reference of
     `optimize --mode fit`.
     """
+    if reference is not None and not (surface or method or from_quads):
+        method = "geodesic"                 # a mesh alone: the default method
     sources = [s for s in (surface and "--surface", method and "--method",
                            from_quads and "--from-quads") if s]
     if len(sources) != 1:

@@ -26,6 +26,7 @@ from dgpc_cli.stages.unfold import (
     CONGRUENCE_TOL_MM,
     STAGGER_FRACTION,
     flat_metrics,
+    narrow_warnings,
     records_in_units,
     scale_warnings,
     template_dxfs,
@@ -50,7 +51,9 @@ log = logging.getLogger(__name__)
 @click.option("--stagger", type=LengthParam(min=0),
               help=length_help("With --stock-length: no joint of a strip within this (>= 0, "
                                "along the geodesic) of a joint of the strips beside it "
-                               f"[default: {STAGGER_FRACTION:g} × the stock length]."))
+                               f"[default: {STAGGER_FRACTION:g} × the stock length, "
+                               "kept where the rulings allow it, with a warning where a "
+                               "joint cannot keep it]."))
 @label_style_opt
 @output_opt
 @force_opt
@@ -76,7 +79,9 @@ def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, 
     json_path, _ = artifact_paths(stem)
     check_writable(output, force, csv_path(output), csv_path(output, "assembly"))
     strips = read_strips(stem)
-    require_sound_strips(strips.geometry, [r["id"] for r in strips.records], json_path)
+    require_sound_strips(strips.geometry, [r["id"] for r in strips.records], json_path,
+                         [[p["rows"] for p in r["trim"]["parts"]] if r.get("trim") else None
+                          for r in strips.records])
     units = strips.units                 # computed in mm (dgpc_cli.io.units)
     stock_mm = None if stock_length is None else stock_length.to_mm(units)
     stagger_mm = (None if stock_length is None else stagger.to_mm(units) if stagger is not None
@@ -85,10 +90,12 @@ def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, 
     parts, classes, joints = unfold_strips(
         geometry, [r["id"] for r in strips.records], [r["v"] for r in strips.records],
         congruence_tol=congruence_tol.to_mm(units), mirror_ok=mirror_ok,
-        stock_length=stock_mm, stagger=stagger_mm, source=json_path,
+        stock_length=stock_mm, stagger=None if stagger is None else stagger_mm,
+        source=json_path,
         trims=[r.get("trim") for r in strips.records],
         cut_edges=[r.get("cut_edges") for r in strips.records])
-    for line in scale_warnings(parts, geometry, units, stock_length):
+    for line in scale_warnings(parts, geometry, units, stock_length) + narrow_warnings(parts,
+                                                                                      units):
         log.warning("%s: %s", json_path, line)
     templates = template_dxfs(parts, classes, label_style)
     parts, classes, joints = records_in_units(parts, classes, joints, units)

@@ -9,11 +9,15 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from shapely.geometry import Polygon
+from shapely.ops import unary_union
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.strips import strip_id
 from dgpc_cli.strips.cut_edges import template_cut_edges
+from dgpc_cli.strips.develop import develop_strip
+from dgpc_cli.strips.pinch import PINCH, row_widths, unpinched, widest_section
 from dgpc_cli.strips.polish import polish_strip
 from dgpc_cli.strips.quality import deviation, planarity_defect, strip_width
 from dgpc_cli.strips.rulings import (
@@ -34,7 +38,7 @@ from dgpc_cli.strips.template import (
     closest_on_polylines,
     start_template,
 )
-from dgpc_cli.strips.trim import strip_points, trim_strip
+from dgpc_cli.strips.trim import TrimPart, part_area, part_length, strip_points, trim_strip
 
 log = logging.getLogger(__name__)
 
@@ -344,22 +348,74 @@ def strips_metrics(strips: list[PlanarStrip]) -> dict:
     }
 
 
+def _trimmed(strip, dev, parts: list[TrimPart], least: float
+             ) -> tuple[list[TrimPart], list[dict]]:
+    """Of the ``parts`` of one strip inside the reference's outline (``dev`` the strip's
+    development), the pieces kept, and the records of what is dropped (its ``rows``,
+    ``quads``, ``area`` and ``reason``: ``pinched`` where the strip is narrower than
+    ``least``, ``sliver`` for a piece nowhere as wide, ``short`` for one shorter than one
+    quad)."""
+    widths = row_widths(strip.A, strip.B)
+    kept, dropped = [], []
+
+    def drop(ring, reason):
+        t = TrimPart(np.asarray(ring, float))
+        dropped.append({"rows": list(t.t_range), "quads": t.quads, "reason": reason,
+                        "area": part_area(dev.A, dev.B, t.outline)})
+
+    for part in parts:
+        pieces = unpinched(part.outline, widths, least)
+        whole = part_area(dev.A, dev.B, part.outline)
+        lost = whole - sum(part_area(dev.A, dev.B, r) for r in pieces)
+        if lost > 1e-9 * whole:
+            rest = Polygon(part.outline).difference(unary_union([Polygon(r) for r in pieces]))
+            dropped.append({"rows": [rest.bounds[0], rest.bounds[2]],
+                            "quads": rest.bounds[2] - rest.bounds[0], "reason": "pinched",
+                            "area": lost})
+        for ring in pieces:
+            piece = TrimPart(ring)
+            if piece.quads < MIN_PART_QUADS:
+                drop(ring, "short")
+            elif widest_section(ring, widths) < least:
+                drop(ring, "sliver")
+            else:
+                kept.append(piece)
+    return kept, dropped
+
+
+#: What a note says of a dropped part, by its reason.
+DROPPED = {"short": "a part {quads:.2f} quads long ({where}) dropped, shorter than one quad",
+           "sliver": "a part {quads:.2f} quads long ({where}) dropped, narrower everywhere "
+                     "than {pinch:g} of the parts' mean width"}
+
+
 def trim_records(strips: list[PlanarStrip], reference) -> tuple[list[dict], list[str]]:
     """``planarize-strips --trim``: for every strip the parts inside the outline of
     ``reference`` (``strips.trim``) as JSON records — id (the strip's id, with a letter when
     the outline cuts the strip into several parts), outline in ``(t, s)`` and in 3-D, the rows
-    it spans — and the parts shorter than one quad, dropped; plus one note per dropped part or
-    strip."""
-    notes, records = [], []
-    for strip in strips:
-        parts = trim_strip(strip.A, strip.B, reference)
-        kept = [p for p in parts if p.quads >= MIN_PART_QUADS]
-        dropped = [p for p in parts if p.quads < MIN_PART_QUADS]
-        for p in dropped:
-            notes.append(f"{strip.id}: a part {p.quads:.2f} quads long (rows "
-                         f"{p.t_range[0]:.2f}-{p.t_range[1]:.2f}) dropped, shorter than one "
-                         "quad")
-        if not parts:
+    it spans — and what is dropped (``_trimmed``: the rows where a strip pinches below
+    :data:`~dgpc_cli.strips.pinch.PINCH` of the parts' mean width (their area over their
+    length), slivers, parts shorter than one quad, each with the area it leaves bare); plus
+    one note per part dropped, one for the pinched ends and one of the whole area left bare."""
+    found = [(s, develop_strip(s.A, s.B), trim_strip(s.A, s.B, reference)) for s in strips]
+    length = sum(part_length(s.A, s.B, p.outline) for s, _, parts in found for p in parts)
+    area = sum(part_area(d.A, d.B, p.outline) for _, d, parts in found for p in parts)
+    least = PINCH * area / length if length > 0 else 0.0      # the parts' mean width
+    tri = reference.vertices[reference.faces]
+    outline_area = float(0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0],
+                                                       tri[:, 2] - tri[:, 0]), axis=-1).sum())
+    notes, records, pinched = [], [], []
+    for strip, dev, parts in found:
+        kept, dropped = _trimmed(strip, dev, parts, least)
+        for d in dropped:
+            if d["reason"] == "pinched":
+                pinched.append((strip.id, d["area"]))
+                continue
+            where = (f"rows {d['rows'][0]:.2f}-{d['rows'][1]:.2f}, "
+                     f"{100 * d['area'] / outline_area:.2g} % of the reference's area")
+            notes.append(f"{strip.id}: " + DROPPED[d["reason"]].format(
+                quads=d["quads"], where=where, pinch=PINCH))
+        if not kept and not dropped:
             notes.append(f"{strip.id}: entirely beyond the reference's outline, dropped")
         letters = len(kept) > 1
         records.append({
@@ -368,9 +424,18 @@ def trim_records(strips: list[PlanarStrip], reference) -> tuple[list[dict], list
                        "outline_3d": strip_points(strip.A, strip.B, p.outline),
                        "rows": [int(np.floor(p.t_range[0])), int(np.ceil(p.t_range[1]))]}
                       for k, p in enumerate(kept)],
-            "dropped": [{"rows": list(p.t_range), "quads": p.quads} for p in dropped]})
+            "dropped": dropped})
     if not any(r["parts"] for r in records):
         raise DgpcError("no strip reaches inside the reference's outline", source="--trim")
+    if pinched:
+        notes.append(f"{', '.join(i for i, _ in pinched)}: the ends where the strip is "
+                     f"narrower than {PINCH:g} of the parts' mean width cut off ("
+                     f"{100 * sum(a for _, a in pinched) / outline_area:.2g} % of the "
+                     "reference's area)")
+    dropped = [d["area"] for r in records for d in r["dropped"]]
+    if len(dropped) > max(1, len(pinched)):
+        notes.append(f"trim: the {len(dropped)} dropped parts leave "
+                     f"{100 * sum(dropped) / outline_area:.2f} % of the reference's area bare")
     log.info("trim: %d parts kept, %d dropped", sum(len(r["parts"]) for r in records),
              sum(len(r["dropped"]) for r in records))
     return records, notes

@@ -21,12 +21,20 @@ def require_sound_net(f: np.ndarray, source, *, gpc: bool = True) -> None:
                         "re-make it first", source=source)
 
 
-def require_sound_strips(geometry, ids: list[str], source) -> None:
+def require_sound_strips(geometry, ids: list[str], source, spans: list | None = None) -> None:
     """DgpcError naming ``source`` and the first degenerate strip when a planar-quad strip
     ``(A, B)`` of ``geometry`` has a collapsed edge or a folded quad (the strip as an m × 2
-    net; its rows are named)."""
-    for (A, B), strip in zip(geometry, ids, strict=True):
+    net; its rows are named). ``spans[i]``, when given and not None, lists the row ranges
+    ``(r0, r1)`` of strip i that are cut (its parts trimmed to the reference's outline): a
+    degenerate quad outside them (in the overhang, trimmed away) does not count."""
+    for i, ((A, B), strip) in enumerate(zip(geometry, ids, strict=True)):
         found = degeneracies(np.stack([A, B], axis=1), gpc_limit=None)
+        span = None if spans is None else spans[i]
+        if found and span is not None:
+            cut = np.zeros(found.bad_quads.shape[0], bool)
+            for r0, r1 in span:
+                cut[r0:r1] = True
+            found = found if found.bad_quads[cut].any() else None
         if found:
             what = ("is folded: its developed outline crosses itself (planarize-strips "
                     "reports crossing rulings in status.rulings_cross)" if len(found.flipped)

@@ -51,7 +51,7 @@ def fabrication_metrics(f: np.ndarray, units: str, records: list[dict], geometry
     areas against its area)."""
     from dgpc_cli.strips.cut_edges import edges_between
     from dgpc_cli.strips.develop import develop_strip, signed_area
-    from dgpc_cli.strips.trim import strip_points
+    from dgpc_cli.strips.trim import part_area
 
     ids = [r["id"] for r in records]
     measures = measure_strips(f, [(r["v"], A, B) for r, (A, B) in
@@ -69,8 +69,7 @@ def fabrication_metrics(f: np.ndarray, units: str, records: list[dict], geometry
             rings = [np.asarray(p["outline"], float) for p in r["trim"]["parts"]]
             dev = develop_strip(A, B)
             part_gaps[r["id"]] = [part_end_gaps(A, B, ring, reference) for ring in rings]
-            part_areas[r["id"]] = [abs(signed_area(strip_points(dev.A, dev.B, ring)))
-                                   for ring in rings]
+            part_areas[r["id"]] = [part_area(dev.A, dev.B, ring) for ring in rings]
         tri = reference.vertices[reference.faces]
         outline_area = float(0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0],
                                                            tri[:, 2] - tri[:, 0]), axis=-1).sum())

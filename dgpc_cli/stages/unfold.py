@@ -23,6 +23,7 @@ from dgpc_cli.strips.boards import Board, cumulative, split_boards
 from dgpc_cli.strips.congruence import Alignment, congruence_classes
 from dgpc_cli.strips.cut_edges import edges_between
 from dgpc_cli.strips.develop import Development, develop_strip, signed_area
+from dgpc_cli.strips.pinch import PINCH
 from dgpc_cli.strips.trim import developed_part
 from dgpc_cli.strips.trimmed_boards import board_ring, split_trimmed
 
@@ -73,9 +74,10 @@ def _boards(geometry: list, devs: list[Development], ids: list[str], columns: li
     """Every part as a board: one per strip without a stock length."""
     if stock_length is None:
         return [Board(i, 1, 0, d.A.shape[0] - 1) for i, d in enumerate(devs)]
+    relax = stagger is None
     stagger = STAGGER_FRACTION * stock_length if stagger is None else stagger
-    return [b for boards in split_boards(devs, geometry, columns, ids, stock_length, stagger)
-            for b in boards]
+    return [b for boards in split_boards(devs, geometry, columns, ids, stock_length, stagger,
+                                         relax) for b in boards]
 
 
 def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
@@ -86,7 +88,8 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
                   ) -> tuple[list[dict], list[dict], list[dict]]:
     """Develop every strip ``(A, B)`` of ``geometry`` (mm), cut it into boards no longer than
     ``stock_length`` (mm; None: whole strips) with joints ``stagger`` apart (default a quarter
-    of the stock), and classify the parts within ``congruence_tol`` (mm).
+    of the stock, kept where the rulings allow, with a warning where they do not), and
+    classify the parts within ``congruence_tol`` (mm).
 
     Returns the part records, class records and joint records of the flat artifact (see
     :mod:`dgpc_cli.io.flat`), in mm. DgpcError (naming ``source``) when a developed outline
@@ -273,9 +276,38 @@ def _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_
     return parts, classes, []
 
 
+def part_narrowness(parts: list[dict]) -> dict:
+    """How narrow the parts get (issue: no part narrower than a quarter of the mean width):
+    ``mean_width`` (their total area over their total length), the ``narrowest`` part (id,
+    least width, ``ratio`` to the mean width) and the parts ``pinched`` below
+    :data:`~dgpc_cli.strips.pinch.PINCH` of it."""
+    length = float(np.sum([p["length"] for p in parts]))
+    mean = float(np.sum([p["area"] for p in parts])) / length if length > 0 else 0.0
+    least = min(parts, key=lambda p: p["width"][0])
+    ratio = least["width"][0] / mean if mean > 0 else 0.0
+    return {"mean_width": mean,
+            "narrowest": {"part": least["id"], "width": least["width"][0], "ratio": ratio},
+            "pinched": [p["id"] for p in parts if p["width"][0] < PINCH * mean]}
+
+
+def narrow_warnings(parts: list[dict], units: str) -> list[str]:
+    """One line when a part is narrower than :data:`~dgpc_cli.strips.pinch.PINCH` of the mean
+    width (:func:`part_narrowness`; ``parts`` in mm)."""
+    n = part_narrowness(parts)
+    if not n["pinched"]:
+        return []
+    k = mm_per_unit(units)
+    names = ", ".join(n["pinched"][:6]) + (", ..." if len(n["pinched"]) > 6 else "")
+    return [f"{len(n['pinched'])} part(s) narrower than {PINCH:g} of the mean width "
+            f"{n['mean_width'] / k:.4g} {units} ({names}; the narrowest "
+            f"{n['narrowest']['width'] / k:.4g} {units}): they pinch where the net's geodesics "
+            "converge; `planarize-strips --trim` cuts such ends off"]
+
+
 def flat_metrics(parts: list[dict], classes: list[dict]) -> dict:
     """The metrics of a flat artifact recomputed from its records (for ``dgpc inspect``)."""
     return {
+        **part_narrowness(parts),
         "n_parts": len(parts), "n_classes": len(classes),
         "max_strain": max(p["strain"] for p in parts),
         "max_straightness": float(max(max(p["straightness"]) for p in parts)),
@@ -304,6 +336,7 @@ def trimmed_boards(geometry, devs, ids, columns, trims, congruence_tol, mirror_o
     joints of neighbouring strips staggered. A board between two rulings that the outline does
     not touch is developed and classified as a board of a whole strip; a board with an end cut
     along the outline is its own class, as a trimmed part is."""
+    relax = stagger is None
     stagger = STAGGER_FRACTION * stock_length if stagger is None else stagger
     along_a = [cumulative(np.asarray(A, float)) for A, _ in geometry]
     along_b = [cumulative(np.asarray(B, float)) for _, B in geometry]
@@ -320,7 +353,7 @@ def trimmed_boards(geometry, devs, ids, columns, trims, congruence_tol, mirror_o
         for piece in pieces:
             ring = np.asarray(piece["outline"], float)
             cuts = split_trimmed(devs[i], ring, stock_length, forbidden, stagger, along_a[i],
-                                 piece["id"])
+                                 piece["id"], relax)
             joints[i] += cuts
             ends = [float(ring[:, 0].min()), *cuts, float(ring[:, 0].max())]
             boards += [(i, piece["id"], k + 1, a, b, ring)

@@ -18,6 +18,7 @@ patterns, and their boards fall into as few templates.
 
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass
 
 import numpy as np
@@ -25,6 +26,8 @@ import numpy as np
 from dgpc_cli.errors import DgpcError
 
 from .develop import Development
+
+log = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
@@ -54,17 +57,27 @@ def board_extent(dev: Development, a: int, b: int) -> float:
 
 
 def split_run(extent, start: float, stop: float, candidates: list[int], stock: float,
-              forbidden: np.ndarray, stagger: float, positions: np.ndarray, name: str
-              ) -> list[int]:
+              forbidden: np.ndarray, stagger: float, positions: np.ndarray, name: str,
+              relax: bool = False) -> list[int]:
     """Joint rows of a run of a strip from ``start`` to ``stop`` (rows, or ``t`` where an
     outline ends it): boards no longer than ``stock`` by ``extent(a, b)``, joints among the
     rows ``candidates`` (ascending, inside the run), each as far as the stock allows; a joint
     at row u is allowed when ``positions[u]`` (its arc length along the shared geodesic) is
-    at least ``stagger`` from every value of ``forbidden`` (the neighbour's joints there)."""
+    at least ``stagger`` from every value of ``forbidden`` (the neighbour's joints there).
+    Where no ruling within the stock keeps the stagger: DgpcError, or with ``relax`` (the
+    default stagger, not one asked for) the ruling farthest from the neighbour's joints,
+    with a warning (rulings farther apart than the stagger leave no choice)."""
     joints: list[int] = []
+    close: list[tuple[int, float]] = []          # joints nearer the neighbour's than stagger
     a = start
     while True:
         if extent(a, stop) <= stock:
+            if close:
+                log.warning("%s: %d joint(s) (rows %s) nearer than the stagger %.4g to the "
+                            "joints of the strip beside it (the nearest %.4g): no ruling "
+                            "within the stock keeps it there", name, len(close),
+                            ", ".join(str(r) for r, _ in close), stagger,
+                            min(g for _, g in close))
             return joints
         ahead = [b for b in candidates if b > a]
         ends = [b for b in ahead if extent(a, b) <= stock][::-1]      # farthest first
@@ -75,6 +88,10 @@ def split_run(extent, start: float, stop: float, candidates: list[int], stock: f
                             f"length {stock:.6g}", source="--stock-length")
         ok = [b for b in ends if forbidden.size == 0
               or np.min(np.abs(positions[b] - forbidden)) >= stagger]
+        if not ok and relax:
+            gap = np.min(np.abs(positions[ends][:, None] - forbidden[None, :]), axis=1)
+            ok = [ends[int(np.argmax(gap))]]
+            close.append((ok[0], float(gap.max())))
         if not ok:
             raise DgpcError(f"{name}: no ruling between rows {ends[-1]} and {ends[0]} keeps "
                             f"{stagger:.6g} from the joints of the strip beside it; use a "
@@ -84,11 +101,11 @@ def split_run(extent, start: float, stop: float, candidates: list[int], stock: f
 
 
 def split_strip(dev: Development, stock: float, forbidden: np.ndarray, stagger: float,
-                positions: np.ndarray, name: str) -> list[int]:
+                positions: np.ndarray, name: str, relax: bool = False) -> list[int]:
     """Joint rows of one developed strip (:func:`split_run` over all its rows)."""
     m = dev.A.shape[0]
     return split_run(lambda a, b: board_extent(dev, a, b), 0, m - 1, list(range(1, m - 1)),
-                     stock, forbidden, stagger, positions, name)
+                     stock, forbidden, stagger, positions, name, relax)
 
 
 def keeps(dev: Development, joints: list[int], stock: float, forbidden: np.ndarray,
@@ -105,9 +122,10 @@ def keeps(dev: Development, joints: list[int], stock: float, forbidden: np.ndarr
 
 
 def split_boards(devs: list[Development], geometry: list, columns: list[int], names: list[str],
-                 stock: float, stagger: float) -> list[list[Board]]:
+                 stock: float, stagger: float, relax: bool = False) -> list[list[Board]]:
     """Boards of every strip: ``devs[i]`` the development of the strip ``geometry[i] = (A, B)``
-    (3-D, for the arc lengths along its geodesics) of net column ``columns[i]``."""
+    (3-D, for the arc lengths along its geodesics) of net column ``columns[i]``; ``relax`` as
+    in :func:`split_run`."""
     if not stock > 0:
         raise DgpcError(f"{stock:g}: must be > 0", source="--stock-length")
     if not stagger >= 0:
@@ -121,7 +139,8 @@ def split_boards(devs: list[Development], geometry: list, columns: list[int], na
         left = by_column.get(int(columns[i]) - 1)      # shares this strip's side A
         forbidden = (along_b[left][joints[left]] if left is not None and left in joints
                      else np.zeros(0))
-        joints[i] = split_strip(devs[i], stock, forbidden, stagger, along_a[i], names[i])
+        joints[i] = split_strip(devs[i], stock, forbidden, stagger, along_a[i], names[i],
+                                relax)
         before = by_column.get(int(columns[i]) - 2)
         if (before is not None and before in joints and len(joints[before]) <= len(joints[i])
                 and keeps(devs[i], joints[before], stock, forbidden, stagger, along_a[i])):

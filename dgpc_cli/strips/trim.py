@@ -56,6 +56,49 @@ def strip_points(A: np.ndarray, B: np.ndarray, ts: np.ndarray) -> np.ndarray:
     return (1 - a) * lo + a * hi
 
 
+def through_rows(ring: np.ndarray) -> np.ndarray:
+    """The ring ``(k, 2)`` in ``(t, s)`` with a point added wherever one of its edges (the
+    closing one too) crosses a row ``t = u`` strictly inside it: mapped by
+    :func:`strip_points`, a side along a boundary geodesic then bends at every row, as the
+    geodesic does (a rectangle's four corners alone would map to chords)."""
+    ring = np.asarray(ring, float)
+    nxt = np.roll(ring, -1, axis=0)
+    t0, t1 = ring[:, 0], nxt[:, 0]
+    first = np.floor(np.minimum(t0, t1)) + 1.0
+    last = np.ceil(np.maximum(t0, t1)) - 1.0
+    count = np.maximum(last - first + 1.0, 0.0).astype(np.int64)
+    if not count.any():
+        return ring
+    e = np.repeat(np.arange(len(ring)), count)
+    j = np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)
+    u = np.where(t1[e] > t0[e], first[e] + j, last[e] - j)
+    a = (u - t0[e]) / (t1[e] - t0[e])
+    added = ring[e] + a[:, None] * (nxt[e] - ring[e])
+    added[:, 0] = u
+    order = np.argsort(np.concatenate([np.arange(len(ring), dtype=float), e + a]),
+                       kind="stable")
+    return np.concatenate([ring, added])[order]
+
+
+def part_area(A2: np.ndarray, B2: np.ndarray, ring: np.ndarray) -> float:
+    """Area of the part ``ring (k, 2)`` (in ``(t, s)``) of the developed strip ``A2, B2``."""
+    from dgpc_cli.strips.develop import signed_area
+
+    return abs(signed_area(strip_points(A2, B2, through_rows(ring))))
+
+
+def part_length(A: np.ndarray, B: np.ndarray, ring: np.ndarray) -> float:
+    """Length of the part ``ring (k, 2)`` (in ``(t, s)``) of the strip ``A, B (m, d)``: the
+    mean of its boundary geodesics' lengths over the part's extent along the strip (as
+    :func:`developed_part` measures it)."""
+    ring = np.asarray(ring, float)
+    t0, t1 = float(ring[:, 0].min()), float(ring[:, 0].max())
+    ts = np.unique(np.concatenate([[t0, t1], np.arange(np.ceil(t0), np.floor(t1) + 1)]))
+    return 0.5 * sum(float(np.linalg.norm(np.diff(strip_points(
+        A, B, np.column_stack([ts, np.full_like(ts, s)])), axis=0), axis=1).sum())
+        for s in (0.0, 1.0))
+
+
 def signed_outline_distance(reference, points: np.ndarray) -> np.ndarray:
     """``(k,)``: for points over ``reference`` (a ``core.reference.ReferenceSurface``) the
     distance along it to its boundary, for points beyond it minus their distance to the
@@ -82,7 +125,8 @@ def trim_strip(A: np.ndarray, B: np.ndarray, reference) -> list[TrimPart]:
     g = signed_outline_distance(reference, strip_points(A, B, np.stack([T, S], -1)))
     g = g.reshape(T.shape)
     if (g >= 0).all():
-        return [TrimPart(np.array([[0.0, 0.0], [m - 1.0, 0.0], [m - 1.0, 1.0], [0.0, 1.0]]))]
+        return [TrimPart(through_rows(np.array([[0.0, 0.0], [m - 1.0, 0.0], [m - 1.0, 1.0],
+                                                 [0.0, 1.0]])))]
     if not (g > 0).any():
         return []
     gen = contour_generator(T, S, g, fill_type="OuterOffset")
@@ -114,7 +158,7 @@ def developed_part(A2: np.ndarray, B2: np.ndarray, ring: np.ndarray) -> dict:
 
     from dgpc_cli.strips.develop import signed_area, straightness
 
-    ring = np.asarray(ring, float)
+    ring = through_rows(ring)
     outline = strip_points(A2, B2, ring)
     if signed_area(outline) < 0:
         outline = outline[::-1]

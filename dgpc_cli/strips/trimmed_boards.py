@@ -49,11 +49,12 @@ def board_extent(dev: Development, part: Polygon, a: float, b: float) -> float:
 
 
 def split_trimmed(dev: Development, ring: np.ndarray, stock: float, forbidden: np.ndarray,
-                  stagger: float, positions: np.ndarray, name: str) -> list[int]:
+                  stagger: float, positions: np.ndarray, name: str, relax: bool = False
+                  ) -> list[int]:
     """Joint rows of the trimmed part ``ring`` (in ``(t, s)``) of the developed strip ``dev``
     (:func:`~dgpc_cli.strips.boards.split_run`)."""
     part = Polygon(ring)
     t0, t1 = float(ring[:, 0].min()), float(ring[:, 0].max())
     rows = [u for u in range(int(np.floor(t0)) + 1, int(np.ceil(t1))) if cuts_once(part, u)]
     return split_run(lambda a, b: board_extent(dev, part, a, b), t0, t1, rows, stock,
-                     forbidden, stagger, positions, name)
+                     forbidden, stagger, positions, name, relax)
