@@ -87,7 +87,8 @@ def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, 
         congruence_tol=congruence_tol.to_mm(units), mirror_ok=mirror_ok,
         stock_length=stock_mm, stagger=stagger_mm, source=json_path,
         trims=[r.get("trim") for r in strips.records],
-        cut_edges=[r.get("cut_edges") for r in strips.records])
+        cut_edges=[r.get("cut_edges") for r in strips.records],
+        template=strips.template is not None and "rejected" not in strips.template)
     for line in scale_warnings(parts, geometry, units, stock_length):
         log.warning("%s: %s", json_path, line)
     templates = template_dxfs(parts, classes, label_style)
