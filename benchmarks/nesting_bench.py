@@ -7,7 +7,9 @@ Facade sets (built with dgpc in a temporary folder unless given): the Gehry faca
 patches (samples/projects/gehry-facade.toml: 48 strips) on 6000 × 1250 mm sheets; the demo
 wall's 12 strips (pipelines/timber-cladding.mk) on its 6100 × 2500 mm panels with the router's
 spacing and margin (8 and 20 mm); the same strips cut into boards (``unfold --stock-length
-2.5``: 36 boards since the strips end on the net's edge rows, 39 before) on 3000 × 1500 mm.
+2.5``: 36 boards since the strips end on the net's edge rows, 39 before; in 6 classes since
+the strips of the template are cut at the same template lines, 41 classes before) on
+3000 × 1500 mm.
 Targets (issue "nesting that scales with the facade"): the 48 Gehry parts on 16 sheets in
 ≤ 10 s, the boards on ≤ 7 sheets, which the centre-line bound rules out for the 36 boards of
 today (every board longer than half the sheet crosses its centre line, at most 4 a sheet:
