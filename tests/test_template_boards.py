@@ -159,3 +159,27 @@ def test_strips_sharing_the_template_vertices_are_cut_at_its_rulings():
         per_strip[p["strip"]] += 1
     assert len(classes) == per_strip[0] + per_strip[1]
     assert max(c["max_deviation_mm"] for c in classes) <= 0.01
+
+
+def test_a_cut_in_space_is_the_template_line_bent_at_the_rulings(net):
+    """The cut's path (its ends and ruling crossings in the strip's (t, s)) on the 3-D strip is
+    as long as the straight cut of the template, and it really bends (the strip is curved)."""
+    geometry, _ = net
+    _, _, joints = _unfold(net)
+    bent = 0.0
+    for j in joints:
+        A, B = geometry[int(j["strip"][3:])]
+        d = develop_strip(A, B)
+        path = np.asarray(j["cut"]["path"])
+        assert path[[0, -1]] == pytest.approx(np.array([j["cut"]["A"], j["cut"]["B"]]), abs=0)
+        assert path[1:-1, 0] == pytest.approx(np.round(path[1:-1, 0]), abs=0)
+        p2, p3 = strip_points(d.A, d.B, path), strip_points(A, B, path)
+        straight = np.linalg.norm(p2[-1] - p2[0])
+        assert np.linalg.norm(np.diff(p3, axis=0), axis=1).sum() == pytest.approx(straight,
+                                                                                    abs=1e-6)
+        # in the development the path is the straight line
+        e, w = (p2[-1] - p2[0]) / straight, p2[1:-1] - p2[0]
+        off = w[:, 0] * e[1] - w[:, 1] * e[0]
+        assert np.abs(off).max(initial=0.0) <= 1e-6
+        bent = max(bent, straight - np.linalg.norm(p3[-1] - p3[0]))
+    assert bent > 1e-3

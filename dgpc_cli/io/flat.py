@@ -16,7 +16,8 @@ the artifact's unit ``data.units`` (the net's):
 * ``cuts`` (boards of one template, ``unfold --stock-length``): the board's two end cuts, each
   a straight line of the template, not necessarily a ruling: ``along`` its arc lengths on the
   template's edges A and B from the first row, ``A`` and ``B`` its ends in the strip's
-  ``(t, s)`` (:mod:`dgpc_cli.strips.template_boards`); ``rows`` are then the net rows the
+  ``(t, s)``, ``path`` its ends and ruling crossings in ``(t, s)`` (the cut on the 3-D strip:
+  :mod:`dgpc_cli.strips.template_boards`); ``rows`` are then the net rows the
   board reaches into;
 * ``alignment``: the rigid motion ``x ↦ matrix·x + translation`` onto its class representative
   (with the boundary pairing used and whether it is a reflection) and its error.

@@ -23,7 +23,7 @@ from dgpc_cli.strips.boards import Board, cumulative, split_boards
 from dgpc_cli.strips.congruence import Alignment, congruence_classes, kabsch, outline_points
 from dgpc_cli.strips.cut_edges import edges_between
 from dgpc_cli.strips.develop import Development, develop_strip, signed_area
-from dgpc_cli.strips.template_boards import board_geometry, cut_params, template_patterns
+from dgpc_cli.strips.template_boards import board_geometry, cut_params, cut_path, template_patterns
 from dgpc_cli.strips.trim import developed_part
 from dgpc_cli.strips.trimmed_boards import board_ring, split_trimmed
 
@@ -176,7 +176,8 @@ def template_boards(devs: list[Development], ids: list[str], columns: list[int],
     strip cut at the template's lines of its column's joint pattern
     (:mod:`dgpc_cli.strips.template_boards`; at the template's rulings where the strips share
     its vertices). A part's ``cuts`` records its two end cuts: their template positions along
-    edges A and B and the ``(t, s)`` of their ends on the strip; ``rows`` the net rows it
+    edges A and B, the ``(t, s)`` of their ends on the strip and their ``path`` in ``(t, s)``
+    (:func:`~dgpc_cli.strips.template_boards.cut_path`); ``rows`` the net rows it
     reaches into; ``positions`` the mean template position of its end cuts; a joint's ``row``
     the ruling nearest its cut."""
     stagger = STAGGER_FRACTION * stock_length if stagger is None else stagger
@@ -197,7 +198,8 @@ def template_boards(devs: list[Development], ids: list[str], columns: list[int],
                           "rows": [int(np.floor(t0 + 1e-9)), int(np.ceil(t1 - 1e-9))],
                           "positions": [float(along[k].mean()), float(along[k + 1].mean())],
                           "cuts": [{"along": along[j].tolist(), "A": ts[j, 0].tolist(),
-                                    "B": ts[j, 1].tolist()} for j in (k, k + 1)],
+                                    "B": ts[j, 1].tolist(),
+                                    "path": cut_path(d, ts[j]).tolist()} for j in (k, k + 1)],
                           "outline": g["outline"], "score": g["score"], "label": g["label"],
                           "geodesics": list(g["geodesics"]), "edges": list(g["edges"]),
                           "straightness": g["straightness"], "strain": d.strain,

@@ -210,3 +210,25 @@ def board_geometry(dev: Development, a: np.ndarray, b: np.ndarray, ta: np.ndarra
             "geodesics": (put(ga), put(gb)), "score": [put(s) for s in score],
             "label": put(label), "length": 0.5 * float(b[0] - a[0] + b[1] - a[1]),
             "straightness": np.array([straightness(ga), straightness(gb)])}
+
+
+def cut_path(dev: Development, ends: np.ndarray) -> np.ndarray:
+    """The strip's ``(t, s)`` ``(k, 2)`` of the template cut whose ends (on edge A, on edge B)
+    are ``ends (2, 2)``: its ends and where it crosses the strip's rulings, from A to B. Between
+    two of them the cut is straight within one planar quad, so
+    :func:`~dgpc_cli.strips.trim.strip_points` of the path on the 3-D strip is the cut in space
+    (the template's straight line carried through the strip's quads, bent at the rulings)."""
+    from .trim import strip_points
+
+    ends = np.asarray(ends, float)
+    p, q = strip_points(dev.A, dev.B, ends)
+    lo, hi = np.sort(ends[:, 0])
+    rows = np.arange(int(np.floor(lo)) + 1, int(np.ceil(hi)))
+    a, r = dev.A[rows], dev.B[rows] - dev.A[rows]
+    d = q - p
+    det = d[0] * r[:, 1] - d[1] * r[:, 0]            # p + λ d = a + s r
+    w = a - p
+    lam = (w[:, 0] * r[:, 1] - w[:, 1] * r[:, 0]) / det
+    s = (w[:, 0] * d[1] - w[:, 1] * d[0]) / det
+    order = np.argsort(lam)
+    return np.concatenate([ends[:1], np.stack([rows, s], axis=-1)[order], ends[1:]])
