@@ -117,9 +117,12 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
                         "rulings cross; planarize-strips reports them in status.rulings_cross)",
                         source=source)
     if template and stock_length is not None and len(devs) > 1:
-        if one_template(devs, congruence_tol):
-            return template_boards(devs, ids, columns, congruence_tol, mirror_ok, stock_length,
-                                   stagger, cut_edges)
+        try:
+            if one_template(devs, congruence_tol):
+                return template_boards(devs, ids, columns, congruence_tol, mirror_ok,
+                                       stock_length, stagger, cut_edges)
+        except ValueError as exc:        # a cut's end not reached in its quad
+            log.warning("a template cut could not be placed on a strip (%s)", exc)
         log.warning("the strips of the template are not copies within %.3g mm: their boards "
                     "are cut at their own rulings", congruence_tol)
     boards = _boards(geometry, devs, ids, columns, stock_length, stagger)
@@ -189,7 +192,7 @@ def template_boards(devs: list[Development], ids: list[str], columns: list[int],
     for i in sorted(range(len(devs)), key=lambda i: columns[i]):
         d = devs[i]
         along = patterns[(int(columns[i]) - int(columns[first])) % 2].along
-        ts = cut_params(d, cut_edges[i], along)
+        ts = cut_params(d, along)
         for k in range(len(along) - 1):
             g = board_geometry(d, along[k], along[k + 1], ts[k], ts[k + 1])
             name = f"{ids[i]}.{k + 1}"

@@ -24,6 +24,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 from shapely.geometry import LineString, Polygon
 
 from dgpc_cli.errors import DgpcError
@@ -136,31 +137,21 @@ def template_patterns(dev: Development, on_rulings: bool, stock: float, stagger:
     return p, greedy_pattern(dev, cand, allowed, stock, name)
 
 
-def edge_params(m: int, cut: dict | None) -> tuple[np.ndarray, np.ndarray]:
-    """The strip's ``(t, s)`` of the vertices of its two cut edges (as
-    :func:`~dgpc_cli.strips.cut_edges.edges_between` builds them over all ``m`` rows)."""
-    out = []
-    for side, s in (("A", 0.0), ("B", 1.0)):
-        inner = (np.stack([np.arange(1, m - 1, dtype=float), np.full(m - 2, s)], axis=-1)
-                 if cut is None else np.asarray(cut[side], float).reshape(-1, 2))
-        out.append(np.concatenate([[[0.0, s]], inner, [[m - 1.0, s]]]))
-    return out[0], out[1]
-
-
-def cut_params(dev: Development, cut: dict | None, along: np.ndarray) -> np.ndarray:
+def cut_params(dev: Development, along: np.ndarray) -> np.ndarray:
     """The strip's ``(t, s)`` ``(k, 2, 2)`` of the ends (on edge A, on edge B) of the cuts
-    ``along (k, 2)`` on the strip developed as ``dev`` (its record's cut edges ``cut``)."""
+    ``along (k, 2)`` on the strip developed as ``dev``: each end in the quad between the two
+    ruling ends that enclose it along its edge (the edge between them lies in that quad's
+    region, :mod:`dgpc_cli.strips.cut_edges`)."""
     m = dev.A.shape[0]
     out = []
-    for j, (edge, ts) in enumerate(zip(dev.cut_edges, edge_params(m, cut), strict=True)):
+    for j, (edge, X) in enumerate(zip(dev.cut_edges, (dev.A, dev.B), strict=True)):
         s = cumulative(edge)
         p = at_arc(edge, s, along[:, j])
-        guess = at_arc(ts, s, along[:, j])
-        for _ in range(2):                 # the quad of the guess, then of the first answer
-            u = np.clip(np.floor(guess[:, 0]).astype(int), 0, m - 2)
-            guess = inverse_bilinear(dev.A, dev.B, u, p,
-                                     np.stack([guess[:, 0] - u, guess[:, 1]], axis=-1))
-        out.append(guess)
+        x = shapely.line_locate_point(LineString(edge), shapely.points(X))
+        u = np.clip(np.searchsorted(x, along[:, j], side="right") - 1, 0, m - 2)
+        frac = (along[:, j] - x[u]) / (x[u + 1] - x[u])
+        out.append(inverse_bilinear(dev.A, dev.B, u, p,
+                                    np.stack([frac, np.full_like(frac, float(j))], axis=-1)))
     return np.stack(out, axis=1)
 
 
