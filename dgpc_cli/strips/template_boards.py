@@ -32,6 +32,7 @@ from dgpc_cli.errors import DgpcError
 from .boards import cumulative
 from .cut_edges import inverse_bilinear
 from .develop import Development, signed_area, straightness
+from .trim import strip_points
 
 #: Step of the cut positions tried along a shared outline (mm), at most this many positions.
 STEP_MM = 1.0
@@ -107,13 +108,14 @@ def greedy_pattern(dev: Development, candidates: np.ndarray, allowed: np.ndarray
                 lo = mid + 1
             else:
                 hi = mid
-        fit = ahead[:lo][allowed[ahead[:lo]]]
-        if fit.size == 0:
+        fit = [c for c in ahead[:lo][allowed[ahead[:lo]]][::-1]    # farthest first
+               if board_extent(ea, sa, eb, sb, a, candidates[c]) <= stock][:1]
+        if not fit:
             raise DgpcError(f"{name}: no cut of the template from {a.mean():.6g} on keeps a "
                             f"board within the stock length {stock:.6g} and the stagger from "
                             "the joints of the strips beside it; use a smaller --stagger or a "
                             "longer --stock-length", source="--stock-length")
-        cuts.append(candidates[fit[-1]])
+        cuts.append(candidates[fit[0]])
     cuts.append(end)
     return Cuts(np.asarray(cuts))
 
@@ -209,8 +211,6 @@ def cut_path(dev: Development, ends: np.ndarray) -> np.ndarray:
     two of them the cut is straight within one planar quad, so
     :func:`~dgpc_cli.strips.trim.strip_points` of the path on the 3-D strip is the cut in space
     (the template's straight line carried through the strip's quads, bent at the rulings)."""
-    from .trim import strip_points
-
     ends = np.asarray(ends, float)
     p, q = strip_points(dev.A, dev.B, ends)
     lo, hi = np.sort(ends[:, 0])
