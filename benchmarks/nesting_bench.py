@@ -7,13 +7,13 @@ Facade sets (built with dgpc in a temporary folder unless given): the Gehry faca
 patches (samples/projects/gehry-facade.toml: 48 strips) on 6000 × 1250 mm sheets; the demo
 wall's 12 strips (pipelines/timber-cladding.mk) on its 6100 × 2500 mm panels with the router's
 spacing and margin (8 and 20 mm); the same strips cut into boards (``unfold --stock-length
-2.5``: 41 boards since the strips end on the net's edge rows) on 3000 × 1500 mm. Targets (issue
-"nesting that scales with the facade"): the 48 Gehry parts on 16 sheets in ≤ 10 s; the boards
-on as few sheets as the bound allows: 8 for the 41 boards of today, not 7. 28 of them are at
-least 1750 mm long, so the sheet's centre line crosses each at least 260 mm from its ends, at
-its full width (330-368 mm; four a sheet), and three more (1561-1637 mm) cross it with their
-slanted ends (201-240 mm): the sections add up to 10,538 mm plus the spacing, more than seven
-sheets' 7 × 1483 mm of line (:mod:`dgpc_cli.nesting.bounds`).
+2.5``: 36 boards since the strips end on the net's edge rows, 39 before; in 6 classes since
+the strips of the template are cut at the same template lines, 41 classes before) on
+3000 × 1500 mm. Targets (issue "nesting that scales with the facade"): the 48 Gehry parts on
+16 sheets in ≤ 10 s; the boards on as few sheets as the bound allows, which rules out the
+issue's 7 for today's boards: every board longer than half the sheet crosses its centre line at
+its full width, and those sections add up, with the spacing, to more than seven sheets' inner
+height (:mod:`dgpc_cli.nesting.bounds`).
 
 Sample: the flat parts of a revolution-isometric net — a full-ring catenoid meridian net
 (21 × 25, 24 strips) bent by Minding's bending (λ = 0.7), planarized and unfolded, at scale 100

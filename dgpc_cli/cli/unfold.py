@@ -46,8 +46,9 @@ log = logging.getLogger(__name__)
                                "optimally aligned, no point of their outlines is farther "
                                "apart than this (> 0)."))
 @click.option("--stock-length", type=LengthParam(min=0, min_open=True),
-              help=length_help("Cut every strip longer than this at rulings into boards no "
-                               "longer than it (> 0): part ids S-v07.1, S-v07.2, ..."))
+              help=length_help("Cut every strip longer than this into boards no longer than "
+                               "it (> 0): part ids S-v07.1, S-v07.2, ...; at rulings, or the "
+                               "strips of one template at the same template lines."))
 @click.option("--stagger", type=LengthParam(min=0),
               help=length_help("With --stock-length: no joint of a strip within this (>= 0, "
                                "along the geodesic) of a joint of the strips beside it "
@@ -68,11 +69,13 @@ def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, 
     whatever the order of the parts), with each copy's deviation from its template in mm. With
     --stock-length, strips are cut at rulings into boards of stock length, the joints of
     neighbouring strips staggered (alternating between two patterns where the strips allow);
-    congruence classes are then per board. Writes the flat artifact -o STEM2, its cut list
-    STEM2.parts.csv (one line per template: quantity and the copies' ids, mm), STEM2.assembly.csv
-    (one line per part: where it goes) and per template STEM2.C01.dxf, ... (the part alone,
-    mm, layers as on nest's cut sheets, labelled with the class, its quantity and its copies'
-    ids in --label-style).
+    the strips of one template are cut at the same straight lines of the template (not
+    necessarily rulings), two joint patterns alternating, so their boards are copies of the
+    boards of the two patterns; congruence classes are then per board. Writes the flat
+    artifact -o STEM2, its cut list STEM2.parts.csv (one line per template: quantity and the
+    copies' ids, mm), STEM2.assembly.csv (one line per part: where it goes) and per template
+    STEM2.C01.dxf, ... (the part alone, mm, layers as on nest's cut sheets, labelled with the
+    class, its quantity and its copies' ids in --label-style).
     """
     if stagger is not None and stock_length is None:
         raise click.UsageError("--stagger goes with --stock-length")
@@ -93,7 +96,8 @@ def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, 
         stock_length=stock_mm, stagger=None if stagger is None else stagger_mm,
         source=json_path,
         trims=[r.get("trim") for r in strips.records],
-        cut_edges=[r.get("cut_edges") for r in strips.records])
+        cut_edges=[r.get("cut_edges") for r in strips.records],
+        template=strips.template is not None and "rejected" not in strips.template)
     for line in scale_warnings(parts, geometry, units, stock_length) + narrow_warnings(parts,
                                                                                       units):
         log.warning("%s: %s", json_path, line)

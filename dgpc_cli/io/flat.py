@@ -13,6 +13,12 @@ the artifact's unit ``data.units`` (the net's):
 * ``geodesics``: the two developed boundary geodesics A and B (the vertices of the quads
   ``A_u A_(u+1) B_(u+1) B_u``), ``straightness``, ``strain``, ``length`` (mean of the two
   geodesics), ``width`` (least and largest distance between them), ``area``;
+* ``cuts`` (boards of one template, ``unfold --stock-length``): the board's two end cuts, each
+  a straight line of the template, not necessarily a ruling: ``along`` its arc lengths on the
+  template's edges A and B from the first row, ``A`` and ``B`` its ends in the strip's
+  ``(t, s)``, ``path`` its ends and ruling crossings in ``(t, s)`` (the cut on the 3-D strip:
+  :mod:`dgpc_cli.strips.template_boards`); ``rows`` are then the net rows the
+  board reaches into;
 * ``alignment``: the rigid motion ``x ↦ matrix·x + translation`` onto its class representative
   (with the boundary pairing used and whether it is a reflection) and its error.
 
@@ -20,7 +26,8 @@ the artifact's unit ``data.units`` (the net's):
 ``representative`` (a part id: the template), ``quantity``, ``members`` (part ids: its copies)
 and the largest member error (``max_error`` in the artifact's unit, ``max_deviation_mm`` in
 mm; each part's own in its ``alignment.deviation_mm``). ``data.joints`` lists where boards
-meet: ``strip``, net ``row``, ``position`` (arc length along the strip) and the two ``parts``.
+meet: ``strip``, net ``row``, ``position`` (arc length along the strip) and the two ``parts``;
+for boards of one template also the ``cut`` (as a part's ``cuts``), ``row`` the nearest ruling.
 The OBJ holds the same parts (z = 0) as one object each, for viewers. Beside it, all listed in
 ``data.files``:
 

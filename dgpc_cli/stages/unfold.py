@@ -20,10 +20,11 @@ from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.nesting.template import template_drawing
 from dgpc_cli.strips.boards import Board, cumulative, split_boards
-from dgpc_cli.strips.congruence import Alignment, congruence_classes
+from dgpc_cli.strips.congruence import Alignment, congruence_classes, kabsch, outline_points
 from dgpc_cli.strips.cut_edges import edges_between
 from dgpc_cli.strips.develop import Development, develop_strip, signed_area
 from dgpc_cli.strips.pinch import PINCH
+from dgpc_cli.strips.template_boards import board_geometry, cut_params, cut_path, template_patterns
 from dgpc_cli.strips.trim import developed_part
 from dgpc_cli.strips.trimmed_boards import board_ring, split_trimmed
 
@@ -84,7 +85,7 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
                   congruence_tol: float = CONGRUENCE_TOL_MM, mirror_ok: bool = False,
                   stock_length: float | None = None, stagger: float | None = None,
                   source: str | None = None, trims: list | None = None,
-                  cut_edges: list | None = None
+                  cut_edges: list | None = None, template: bool = False
                   ) -> tuple[list[dict], list[dict], list[dict]]:
     """Develop every strip ``(A, B)`` of ``geometry`` (mm), cut it into boards no longer than
     ``stock_length`` (mm; None: whole strips) with joints ``stagger`` apart (default a quarter
@@ -99,7 +100,10 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
     each its own congruence class (their end cuts follow the outline); they are not cut into
     boards. ``cut_edges[i]`` (a shared-outline template's ``cut_edges`` record), when given,
     are the edges strip i is cut along instead of its polylines A and B
-    (:func:`with_cut_edges`): its outline, widths and congruence follow them.
+    (:func:`with_cut_edges`): its outline, widths and congruence follow them. ``template``:
+    the strips are bendings of one template (``planarize-strips``' ``template`` record); with a
+    stock length every strip is then cut at the same lines of the template, in two alternating
+    joint patterns (:func:`template_boards`).
     """
     cut_edges = cut_edges or [None] * len(geometry)
     devs = [with_cut_edges(develop_strip(A, B), cut, 0, len(A) - 1)
@@ -115,6 +119,15 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
         raise DgpcError(f"the developed outline of {', '.join(folded)} crosses itself (its "
                         "rulings cross; planarize-strips reports them in status.rulings_cross)",
                         source=source)
+    if template and stock_length is not None and len(devs) > 1:
+        try:
+            if one_template(devs, congruence_tol):
+                return template_boards(devs, ids, columns, congruence_tol, mirror_ok,
+                                       stock_length, stagger, cut_edges)
+        except ValueError as exc:        # a cut's end not reached in its quad
+            log.warning("a template cut could not be placed on a strip (%s)", exc)
+        log.warning("the strips of the template are not copies within %.3g mm: their boards "
+                    "are cut at their own rulings", congruence_tol)
     boards = _boards(geometry, devs, ids, columns, stock_length, stagger)
     split = stock_length is not None
     names = [f"{ids[b.strip]}.{b.number}" if split else ids[b.strip] for b in boards]
@@ -145,6 +158,78 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
               for i, b in enumerate(boards[:-1]) if boards[i + 1].strip == b.strip]
     log.info("%d parts in %d congruence classes, %d joints", len(parts), len(class_records),
              len(joints))
+    return parts, class_records, joints
+
+
+def one_template(devs: list[Development], tol: float) -> bool:
+    """Whether the developed strips ``devs`` (cut along their cut edges) are copies of the first
+    within ``tol`` (mm), edge A on edge A: the strips of one template."""
+    k = 4 * max(d.A.shape[0] for d in devs)
+    ref = outline_points(*devs[0].cut_edges, k)
+    for d in devs[1:]:
+        X = outline_points(*d.cut_edges, k)
+        R, t = kabsch(X, ref, False)
+        if np.max(np.linalg.norm(X @ R.T + t - ref, axis=1)) > tol:
+            return False
+    return True
+
+
+def template_boards(devs: list[Development], ids: list[str], columns: list[int],
+                    congruence_tol: float, mirror_ok: bool, stock_length: float,
+                    stagger: float | None, cut_edges: list
+                    ) -> tuple[list[dict], list[dict], list[dict]]:
+    """:func:`unfold_strips` with a stock length for the strips of one template (mm): every
+    strip cut at the template's lines of its column's joint pattern
+    (:mod:`dgpc_cli.strips.template_boards`; at the template's rulings where the strips share
+    its vertices). A part's ``cuts`` records its two end cuts: their template positions along
+    edges A and B, the ``(t, s)`` of their ends on the strip and their ``path`` in ``(t, s)``
+    (:func:`~dgpc_cli.strips.template_boards.cut_path`); ``rows`` the net rows it
+    reaches into; ``positions`` the mean template position of its end cuts; a joint's ``row``
+    the ruling nearest its cut."""
+    stagger = STAGGER_FRACTION * stock_length if stagger is None else stagger
+    on_rulings = all(c is None for c in cut_edges)
+    first = int(np.argmin(columns))
+    patterns = template_patterns(devs[first], on_rulings, stock_length, stagger,
+                                 len(devs) > 2, ids[first])
+    parts, edges, keys, ends = [], [], [], []
+    for i in sorted(range(len(devs)), key=lambda i: columns[i]):
+        d = devs[i]
+        along = patterns[(int(columns[i]) - int(columns[first])) % 2].along
+        ts = cut_params(d, along)
+        for k in range(len(along) - 1):
+            g = board_geometry(d, along[k], along[k + 1], ts[k], ts[k + 1])
+            name = f"{ids[i]}.{k + 1}"
+            t0, t1 = float(ts[k, :, 0].min()), float(ts[k + 1, :, 0].max())
+            parts.append({"id": name, "strip": int(columns[i]), "board": k + 1,
+                          "rows": [int(np.floor(t0 + 1e-9)), int(np.ceil(t1 - 1e-9))],
+                          "positions": [float(along[k].mean()), float(along[k + 1].mean())],
+                          "cuts": [{"along": along[j].tolist(), "A": ts[j, 0].tolist(),
+                                    "B": ts[j, 1].tolist(),
+                                    "path": cut_path(d, ts[j]).tolist()} for j in (k, k + 1)],
+                          "outline": g["outline"], "score": g["score"], "label": g["label"],
+                          "geodesics": list(g["geodesics"]), "edges": list(g["edges"]),
+                          "straightness": g["straightness"], "strain": d.strain,
+                          "length": g["length"], "width": list(part_widths(*g["edges"])),
+                          "area": signed_area(g["outline"])})
+            edges.append(g["edges"])
+            keys.append((int(columns[i]), k + 1, name))
+            ends.append((i, float(ts[k + 1, :, 0].mean())))
+    classes = congruence_classes(edges, congruence_tol, keys, mirror_ok=mirror_ok)
+    class_records = []
+    for cls in classes:
+        rep_len = parts[cls.representative]["length"]
+        for n, al in zip(cls.members, cls.alignments, strict=True):
+            parts[n].update({"class": cls.id, "alignment": al.record(rep_len)})
+        class_records.append(class_record(cls.id, parts[cls.representative]["id"],
+                                          [parts[n]["id"] for n in cls.members],
+                                          [al.error for al in cls.alignments], rep_len))
+    joints = [{"strip": ids[i], "row": min(max(int(round(t)), 1), devs[i].A.shape[0] - 2),
+               "position": parts[n]["positions"][1], "cut": parts[n]["cuts"][1],
+               "parts": [parts[n]["id"], parts[n + 1]["id"]]}
+              for n, (i, t) in enumerate(ends[:-1]) if ends[n + 1][0] == i]
+    log.info("%d boards of the template in %d congruence classes (two joint patterns of %d and "
+             "%d boards), %d joints", len(parts), len(class_records),
+             len(patterns[0].along) - 1, len(patterns[1].along) - 1, len(joints))
     return parts, class_records, joints
 
 
@@ -217,12 +302,19 @@ def records_in_units(parts: list[dict], classes: list[dict], joints: list[dict],
             "score": [geometry(line) for line in p["score"]],
             "label": geometry(p["label"]), "geodesics": [geometry(g) for g in p["geodesics"]],
             **({"edges": [geometry(g) for g in p["edges"]]} if "edges" in p else {}),
+            **({"cuts": [cut_in_units(c, k) for c in p["cuts"]]} if "cuts" in p else {}),
             "length": p["length"] / k, "width": [w / k for w in p["width"]],
             "area": p["area"] / k**2,
             "alignment": {**al, "translation": np.asarray(al["translation"]) / k,
                           "error": al["error"] / k}})
     return (out, [{**c, "max_error": c["max_error"] / k} for c in classes],
-            [{**j, "position": j["position"] / k} for j in joints])
+            [{**j, "position": j["position"] / k,
+              **({"cut": cut_in_units(j["cut"], k)} if "cut" in j else {})} for j in joints])
+
+
+def cut_in_units(cut: dict, k: float) -> dict:
+    """A template cut record (:func:`template_boards`) with its positions divided by ``k``."""
+    return {**cut, "along": [x / k for x in cut["along"]]}
 
 
 def cuttable_part(A: np.ndarray, B: np.ndarray, ring: np.ndarray, name: str, source) -> dict:

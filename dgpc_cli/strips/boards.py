@@ -12,8 +12,8 @@ order of their column: each strip's joints avoid those of the strip before it (w
 are fixed), and every board is made as long as the stock and the stagger allow (greedy from
 the first row, which gives the fewest boards for the strip). A strip takes the joints of the
 strip two columns before it instead, where they fit its stock, keep the stagger and need no
-more boards: the strips of a template (congruent strips) then alternate between two joint
-patterns, and their boards fall into as few templates.
+more boards. (Strips that ``planarize-strips`` bent from one template are cut at the template's
+lines instead, two patterns alternating: :mod:`dgpc_cli.strips.template_boards`.)
 """
 
 from __future__ import annotations
