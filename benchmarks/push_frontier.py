@@ -1,9 +1,9 @@
 """What an isometric push between held corners costs: strain against crease, by net size and
 by weights (issue "drags that feel right"; not part of ``make bench``: a study of a few minutes).
 
-The case: the meridian net of the built-in half sphere (radius 5, 120° wide), the two corners of
-row 0 held and its middle pushed 5 % of the radius towards the axis, ``--mode isometric``,
-5 steps (as ``tests/test_freeform_drags.py`` builds it). Printed, one line per run: the state
+The case: the meridian net of the built-in half sphere (radius 5, 120° wide; ``--profile``
+another built-in profile), the two corners of row 0 held and its middle pushed 5 % of the
+radius towards the axis, ``--mode isometric``, 5 steps (as ``tests/test_freeform_drags.py`` builds it). Printed, one line per run: the state
 ``optimize`` would report, the largest strain against the input (paper §6.1), the largest third
 difference across the geodesics (``crease_max``, mean edges), the gpc angle defect (rad).
 
@@ -41,10 +41,10 @@ from dgpc_cli.tolerances import tol as TOL
 PUSH, STEPS, CREASE, PAPER_STRAIN = 0.05, 5, 0.05, 4e-5
 
 
-def sphere_net(d: Path, m: int) -> np.ndarray:
-    stem = d / f"sphere{m}"
+def sphere_net(d: Path, m: int, profile: str = "sphere") -> np.ndarray:
+    stem = d / f"{profile}{m}"
     subprocess.run([sys.executable, "-m", "dgpc_cli.cli.main", "-q", "init", "--surface",
-                    "revolution", "--profile", "sphere", "--rows", str(m), "--cols", str(m),
+                    "revolution", "--profile", profile, "--rows", str(m), "--cols", str(m),
                     "--span", "120", "-o", str(stem), "--force"],
                    check=True, capture_output=True)
     return read_net(stem).f
@@ -88,17 +88,19 @@ def turning(g: np.ndarray, axis: int) -> np.ndarray:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--fine", action="store_true", help="also the 41×41 net")
+    parser.add_argument("--profile", default="sphere",
+                        help="built-in profile (the issue's sphere-zone: -45° to 45°)")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         d = Path(tmp)
         print("1. by size\n" + HEADER)
         for m in (21, 25, 31):
-            f = sphere_net(d, m)
+            f = sphere_net(d, m, args.profile)
             for label, over in (("mode", ()), ("no guard", ("crease_guard=0",))):
                 print(line(f"{m}×{m} {label}", push(f, over)[0]), flush=True)
 
         print("\n2. 21×21 by weights\n" + HEADER)
-        f = sphere_net(d, 21)
+        f = sphere_net(d, 21, args.profile)
         guards = {"guard 1": ("crease_guard=1",), "guard 1e-3": ("crease_guard=1e-3",),
                   "no guard": ("crease_guard=0",),
                   "smoothness 1e-4": ("crease_guard=0", "displacement_smoothness=1e-4")}
@@ -118,7 +120,7 @@ def main() -> None:
 
         if args.fine:
             print("\n3. 41×41, and its deformation read on the 21×21 net\n" + HEADER)
-            f41 = sphere_net(d, 41)
+            f41 = sphere_net(d, 41, args.profile)
             r41, g41 = push(f41)
             print(line("41×41 mode", r41))
             g = g41[::2, ::2]
