@@ -28,7 +28,17 @@ Guided projection minimizes Σ w_t ‖φ_t‖² (plus its damping), so the weigh
   pushed 5 % of the radius towards the axis: crease 0.123 → 0.048 mean edges, strain 1.5e-4 →
   2.9e-4 (at 21×21 a smooth net pays for this push in strain); on the 41×41 net crease 0.054 →
   0.034, strain 6.0e-5 → 3.3e-5; Gehry facade 1 (21×13): crease 0.155 → 0.066, strain 3.1e-5
-  → 3.9e-5.
+  → 3.9e-5. Why the 21×21 net pays (``benchmarks/push_frontier.py``): the normal curvatures
+  of row 0 and of the meridian across it multiply to K plus the squared geodesic torsion
+  (Gauss), so where the push flattens row 0 the meridian must curl; in the 41×41 result row 0
+  turns 0.09 times its start angle at the pushed vertex and 2.1 times near the corners, the
+  pushed meridian 2.8 times next to row 0.
+  Edges twice as long cannot follow that: the 41×41 result read on the 21×21 net (every other
+  vertex) has strain 1.4e-3, crease 0.072. Across 24 weightings at 21×21 ((6) at 0.3, 1, 3;
+  the guard at 1, 1e-3 or off, or the displacement's third differences instead; relaxed or
+  not) the least strain at crease ≤ 0.05 is 1.2e-4 (gpc defect 2.5e-4), 2.7e-4 within
+  ``--gpc-tol``, 8.5e-5 at any crease; by size (guarded): 2.9e-4 (21×21), 2.2e-4 (25×25),
+  1.6e-4 (31×31), 3.3e-5 (41×41): the paper's 4e-5 is met at 41×41, not at 31×31.
 
 Weights hold as written for a net scaled to mean edge length 1 (``core.problem``).
 """
