@@ -248,7 +248,7 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
     The fits of :data:`TEMPLATE_FITS` (variants shared vertices and shared outline, starts the
     per-strip strips and the net's own strips with rulings on the v-edges) share one
     :class:`~dgpc_cli.strips.template.TemplateProblem` (one setup); the fit that stays
-    closer to the net (largest deviation) is kept. Strips that are congruent already (a
+    closest to the net (largest deviation) is kept. Strips that are congruent already (a
     surface of revolution) are rebuilt from the first one's development without a fit
     (status ``congruent``). Fits whose template folds (rulings that cross) are refused; the
     ruling fairness is raised tenfold until one keeps them in order (:data:`FAIRNESS_STEPS`).
