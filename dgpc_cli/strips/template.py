@@ -74,8 +74,12 @@ log = logging.getLogger(__name__)
 VARIANTS = ("shared-vertices", "shared-outline")
 #: The outline polynomials' y range is the start template's times this (room to move).
 OUTLINE_MARGIN = 1.1
-#: Degree of the Chebyshev polynomials of the shared outline's two curves (at most m − 1).
+#: Lowest degree of the Chebyshev polynomials of the shared outline's two curves; higher (up
+#: to m − 1, :func:`outline_degree`) until the curves hold the net's own developed strip within
+#: OUTLINE_TOL of its width (a bowling pin's meridian strips, whose width changes fourfold with
+#: a neck between, need degree 18 at 21 rows: degree 6 leaves 3.9 % of the width).
 OUTLINE_DEGREE = 6
+OUTLINE_TOL = 1e-3
 #: Weights of the soft terms and regularizers in the first round (the hard terms have weight
 #: 1): closeness of the strips to the net, the boundary vertices' distance across their net
 #: geodesic, their slide along it within a round (a proximal term: sliding is free for the
@@ -170,6 +174,26 @@ def start_template(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     aligned onto the first one's (Kabsch) and averaged, placed with ``a_0`` at the origin and
     ``b_0`` on the +x axis (the gauge of the fit)."""
     return start_developments(A, B)[1]
+
+
+def outline_degree(P: np.ndarray, Q: np.ndarray) -> int:
+    """The degree of the shared outline's curves for the net strips ``P, Q (S, m, 3)``: the
+    lowest from :data:`OUTLINE_DEGREE` to m − 1 whose two Chebyshev polynomials (``x`` of
+    ``y`` in the gauge of the fit, least squares) hold the boundaries of the net's own strip
+    developed and averaged (:func:`start_template`, the strip every net strip is intrinsically)
+    within :data:`OUTLINE_TOL` of its mean width; m − 1 if none does."""
+    m = P.shape[1]
+    T = start_template(P, Q)
+    y, x = T[..., 1], T[..., 0]
+    t = (y - 0.5 * (y.max() + y.min())) / (OUTLINE_MARGIN * 0.5 * float(np.ptp(y)))
+    tol = OUTLINE_TOL * float(np.mean(np.linalg.norm(T[:, 1] - T[:, 0], axis=-1)))
+    for degree in range(min(OUTLINE_DEGREE, m - 1), m - 1):
+        V, _ = chebyshev_basis(t.T.reshape(-1), degree)                  # side a, then side b
+        fit = [V[j * m:(j + 1) * m] @ np.linalg.lstsq(V[j * m:(j + 1) * m], x[:, j],
+                                                       rcond=None)[0] for j in (0, 1)]
+        if max(float(np.abs(fit[j] - x[:, j]).max()) for j in (0, 1)) <= tol:
+            return degree
+    return m - 1
 
 
 def _rotate_about(X, origin, axis, angle):
@@ -336,7 +360,7 @@ class TemplateProblem:
 
     def with_variant(self, variant: str) -> TemplateProblem:
         """The same problem for the other ``variant`` (its own layout and workspace)."""
-        degree = min(OUTLINE_DEGREE, self.layout.m - 1) if variant == "shared-outline" else 0
+        degree = outline_degree(self.P, self.Q) if variant == "shared-outline" else 0
         return dataclasses.replace(self, variant=variant, workspace=None,
                                    layout=StripSetLayout(self.layout.m, self.layout.S, degree))
 
