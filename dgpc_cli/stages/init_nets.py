@@ -68,6 +68,7 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
                                   "angle": angle, "rows": rows, "cols": cols,
                                   "spacing": spacing,
                                   "extend": net.parameters.get("extend", 0.0),
+                                  "given_extend": extend,
                                   "largest_component": largest_component},
                                  units=units, fmt=fmt, force=force, check=check, say=say)
             if written:
