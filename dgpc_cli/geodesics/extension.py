@@ -46,8 +46,9 @@ FIT_REACH = 2.0
 #: many times their reach (the reach is measured in space, the continuation along the
 #: boundary's outward direction) ...
 SURROUND_MARGIN = 1.5
-#: ... by at most this fraction of the whole mesh's diagonal.
-MAX_SURROUND = 0.5
+#: ... by at most this fraction of the whole mesh's diagonal, or as far as it does not fold
+#: (found to 2^-SURROUND_STEPS of that).
+MAX_SURROUND, SURROUND_STEPS = 0.5, 6
 
 
 def boundary_edges(faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -307,11 +308,10 @@ def surrounded(patch: ReferenceMesh, whole: ReferenceMesh, fraction: float) -> R
         return patch
     reach = fraction * patch.bbox_diagonal
     want = min(SURROUND_MARGIN * reach / whole.bbox_diagonal, MAX_SURROUND)
-    try:
-        domain = continued(whole, want)
-    except DgpcError:
-        domain = continued(whole, largest_unfolded(whole, want))
-    V, F = domain.vertices, domain.faces
+    check_extension_size(whole, want)
+    V, F, folds = _continuation(whole, want)
+    if folds:
+        V, F, _ = _continuation(whole, largest_unfolded(whole, want, steps=SURROUND_STEPS))
     foot, _ = ReferenceSurface(patch.vertices, patch.faces).closest(V)
     near = np.linalg.norm(V - foot, axis=1) <= reach
     F = F[near[F].any(axis=1)]

@@ -41,10 +41,14 @@ def _searched(m, whole, options: dict):
     (``geodesics.extension.surrounded``; the net's ``data.surroundings``, the whole mesh, tells
     ``optimize`` to fit it there); the search's record rides on the net (``data.init.search``) until the
     choice is recorded."""
+    from dgpc_cli.stages.init_mesh import DEFAULT_COLS
     from dgpc_cli.stages.init_search import search
 
+    cols = options["cols"]
+    if cols is None and options["spacing"] is None:
+        cols = DEFAULT_COLS         # a patch is smaller than the whole: its size not searched
     found = search(m, base=options["base"], direction=options["direction"],
-                   angle=options["angle"], rows=options["rows"], cols=options["cols"],
+                   angle=options["angle"], rows=options["rows"], cols=cols,
                    spacing=options["spacing"], extend=None, surroundings=whole)
     net = found.grid.net
     if found.extend > 0:
