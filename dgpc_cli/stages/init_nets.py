@@ -73,6 +73,9 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
                                  units=units, fmt=fmt, force=force, check=check, say=say)
             if written:
                 return written
+        elif made.poor and say is not None:
+            say(f"init: {made.poor}; --patches auto cuts the mesh into patches, one net each, "
+                "where one net's strips vary in width more than 3x")
     else:
         from dgpc_cli.stages.init_quads import init_from_quads
 
