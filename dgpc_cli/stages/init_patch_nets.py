@@ -39,8 +39,8 @@ def _searched(m, whole, options: dict):
     (``stages.init_search``: base curves, overhang, size, ranked after a quick fit), as for a
     single net, its overhang running onto the whole mesh around the patch
     (``geodesics.extension.surrounded``; the net's ``data.surroundings``, the whole mesh, tells
-    ``optimize`` to fit it there); the search's record rides on the net (``data.init.search``) until the
-    choice is recorded."""
+    ``optimize`` to fit it there); the search's record rides on the net
+    (``data.init.search``) until the choice is recorded."""
     from dgpc_cli.stages.init_mesh import DEFAULT_COLS
     from dgpc_cli.stages.init_search import search
 
