@@ -172,7 +172,7 @@ def test_each_patch_trimmed_parts_cover_its_patch(meshes, tmp_path):
 
 def test_report_draws_the_cut_curves(meshes, tmp_path):
     _, lobes, vault_obj = meshes
-    dgpc("init", lobes, *ALONG, "--patches", 2, "-o", tmp_path / "a")
+    dgpc("init", lobes, *ALONG, "--patches", 2, "--extend", 0, "-o", tmp_path / "a")
     dgpc("report", tmp_path / "a.p1", "-o", tmp_path / "fig")
     assert (tmp_path / "fig-patches.png").stat().st_size > 0
     assert "cut curves" in (tmp_path / "fig-index.html").read_text() or \
@@ -243,11 +243,11 @@ def test_existing_patch_nets_are_kept_without_force(meshes, tmp_path):
     """A second run without --force refuses before writing anything (exit 1, one line), and
     leaves the first run's files as they were; with --force it writes them again."""
     _, lobes, _ = meshes
-    dgpc("init", lobes, *ALONG, "--patches", 2, "-o", tmp_path / "a")
+    dgpc("init", lobes, *ALONG, "--patches", 2, "--extend", 0, "-o", tmp_path / "a")
     (tmp_path / "a.p1.json").unlink()
     before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
-    r = dgpc("init", lobes, *ALONG, "--patches", 2, "-o", tmp_path / "a", expect=1)
+    r = dgpc("init", lobes, *ALONG, "--patches", 2, "--extend", 0, "-o", tmp_path / "a", expect=1)
     assert "already exists; use --force" in r.stderr and "a.p1" in r.stderr
     assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
-    dgpc("init", lobes, *ALONG, "--patches", 2, "-o", tmp_path / "a", "--force")
+    dgpc("init", lobes, *ALONG, "--patches", 2, "--extend", 0, "-o", tmp_path / "a", "--force")
     assert (tmp_path / "a.p1.json").is_file()
