@@ -107,10 +107,15 @@ def test_patches_2_writes_one_net_per_lobe(meshes, tmp_path):
         assert net.data["reference"]["path"] == f"a.p{k}.patch.obj"
         patch = load_mesh(tmp_path / f"a.p{k}.patch.obj")
         total += _area(patch.vertices, patch.faces)
-        # the net lies on its own patch: its x keeps to that side of the valley
+        # the net lies on its own patch: its x keeps to that side of the valley, but for the
+        # overhang the search gave it, which runs on over the other lobe (the whole mesh)
         side = np.sign(net.f[..., 0].mean())
         assert side == (-1 if k == 1 else 1)
-        assert (side * net.f[..., 0] >= -1e-9).all()
+        reach = net.extend * patch.bbox_diagonal
+        assert (side * net.f[..., 0] >= -reach - 1e-9).all()
+        if net.extend:
+            assert net.data["surroundings"] == net.inputs["mesh"]
+            assert (side * net.f[..., 0] < -0.5 * reach).any()
         assert net.metrics["coverage"]["area_fraction"] > 0.9
     assert total == pytest.approx(_area(whole.vertices, whole.faces), rel=1e-9)
     # deterministic: the same command into another folder as deep writes the same bytes
@@ -167,7 +172,7 @@ def test_each_patch_trimmed_parts_cover_its_patch(meshes, tmp_path):
 
 def test_report_draws_the_cut_curves(meshes, tmp_path):
     _, lobes, vault_obj = meshes
-    dgpc("init", lobes, *ALONG, "--patches", 2, "-o", tmp_path / "a")
+    dgpc("init", lobes, *ALONG, "--patches", 2, "--extend", 0, "-o", tmp_path / "a")
     dgpc("report", tmp_path / "a.p1", "-o", tmp_path / "fig")
     assert (tmp_path / "fig-patches.png").stat().st_size > 0
     assert "cut curves" in (tmp_path / "fig-index.html").read_text() or \
@@ -238,11 +243,11 @@ def test_existing_patch_nets_are_kept_without_force(meshes, tmp_path):
     """A second run without --force refuses before writing anything (exit 1, one line), and
     leaves the first run's files as they were; with --force it writes them again."""
     _, lobes, _ = meshes
-    dgpc("init", lobes, *ALONG, "--patches", 2, "-o", tmp_path / "a")
+    dgpc("init", lobes, *ALONG, "--patches", 2, "--extend", 0, "-o", tmp_path / "a")
     (tmp_path / "a.p1.json").unlink()
     before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
-    r = dgpc("init", lobes, *ALONG, "--patches", 2, "-o", tmp_path / "a", expect=1)
+    r = dgpc("init", lobes, *ALONG, "--patches", 2, "--extend", 0, "-o", tmp_path / "a", expect=1)
     assert "already exists; use --force" in r.stderr and "a.p1" in r.stderr
     assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
-    dgpc("init", lobes, *ALONG, "--patches", 2, "-o", tmp_path / "a", "--force")
+    dgpc("init", lobes, *ALONG, "--patches", 2, "--extend", 0, "-o", tmp_path / "a", "--force")
     assert (tmp_path / "a.p1.json").is_file()

@@ -89,6 +89,18 @@ def describe(curves: list[BoundaryCurve]) -> str:
     return ", ".join(f"{c.name} ({c.length:.4g} long, loop {c.loop})" for c in curves)
 
 
+def relocated(curve: SectionCurve, vertices: np.ndarray, faces: np.ndarray) -> SectionCurve:
+    """``curve`` (drawn on another triangulation of the same surface: a patch cut from a mesh)
+    with the faces of ``vertices, faces`` nearest its segments' midpoints (libigl AABB)."""
+    import igl
+
+    mid = np.ascontiguousarray(0.5 * (curve.points[1:] + curve.points[:-1]))
+    found = igl.point_mesh_squared_distance(mid, np.ascontiguousarray(vertices, dtype=float),
+                                            np.ascontiguousarray(faces, dtype=np.int64))[1]
+    return SectionCurve(points=curve.points, faces=np.asarray(found, np.int64),
+                        closed=curve.closed)
+
+
 def prolonged(curve: SectionCurve, vertices: np.ndarray, faces: np.ndarray,
               length: float, tracer=None) -> SectionCurve:
     """The open ``curve`` on the mesh ``vertices, faces`` continued at both ends by geodesics

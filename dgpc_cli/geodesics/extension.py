@@ -42,6 +42,13 @@ SMOOTHING, SHORT = 2.0, 0.5
 #: A net traced out to ``init --extend F`` is fitted to the mesh continued to this many times
 #: F, so its rim never meets a boundary (where the closest point would pull it back).
 FIT_REACH = 2.0
+#: A patch's surroundings (:func:`surrounded`) are cut from the whole mesh continued by this
+#: many times their reach (the reach is measured in space, the continuation along the
+#: boundary's outward direction) ...
+SURROUND_MARGIN = 1.5
+#: ... by at most this fraction of the whole mesh's diagonal, or as far as it does not fold
+#: (found to 2^-SURROUND_STEPS of that).
+MAX_SURROUND, SURROUND_STEPS = 0.5, 6
 
 
 def boundary_edges(faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -285,3 +292,38 @@ def _continuation(mesh: ReferenceMesh, fraction: float) -> tuple[np.ndarray, np.
     """:func:`extend_mesh` by ``fraction`` of the diagonal and its :func:`folded_faces`."""
     V, F = extend_mesh(mesh.vertices, mesh.faces, fraction * mesh.bbox_diagonal)
     return V, F, folded_faces(V, F, len(mesh.faces))
+
+
+def surrounded(patch: ReferenceMesh, whole: ReferenceMesh, fraction: float) -> ReferenceMesh:
+    """What a net on ``patch`` (a patch of ``whole``, ``init --patches``) runs past the patch
+    on, out to ``fraction`` of the patch's diagonal: the whole mesh, continued in its own
+    boundary's tangent planes (as far as that does not fold), cropped to the faces within that
+    reach of the patch (the piece around the patch). Across a cut a net so goes on over the
+    neighbouring patch, the surface itself, where the patch's own continuation would leave it
+    in the cut's tangent planes and fold at the patch's concave corners. Path and sha256 stay
+    the patch's; a fraction of 0 gives the patch itself."""
+    from dgpc_cli.core.reference import ReferenceSurface
+
+    if fraction <= 0:
+        return patch
+    reach = fraction * patch.bbox_diagonal
+    want = min(SURROUND_MARGIN * reach / whole.bbox_diagonal, MAX_SURROUND)
+    check_extension_size(whole, want)
+    V, F, folds = _continuation(whole, want)
+    if folds:
+        V, F, _ = _continuation(whole, largest_unfolded(whole, want, steps=SURROUND_STEPS))
+    foot, _ = ReferenceSurface(patch.vertices, patch.faces).closest(V)
+    near = np.linalg.norm(V - foot, axis=1) <= reach
+    F = F[near[F].any(axis=1)]
+    # the piece around the patch: the largest connected one
+    k = len(V)
+    graph = coo_array((np.ones(2 * len(F)), (F[:, [0, 1]].ravel(), F[:, [1, 2]].ravel())),
+                      shape=(k, k))
+    _, label = connected_components(graph, directed=False)
+    sizes = np.bincount(label[F[:, 0]])
+    F = F[label[F[:, 0]] == np.argmax(sizes)]
+    used = np.unique(F)
+    index = np.full(k, -1, np.int64)
+    index[used] = np.arange(len(used))
+    return dataclasses.replace(patch, vertices=np.ascontiguousarray(V[used]),
+                               faces=np.ascontiguousarray(index[F]))

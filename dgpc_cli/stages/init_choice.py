@@ -30,7 +30,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from dgpc_cli.errors import DgpcError
-from dgpc_cli.geodesics.boundary import BoundaryCurve, boundary_curves, describe, prolonged
+from dgpc_cli.geodesics.boundary import (
+    BoundaryCurve,
+    boundary_curves,
+    describe,
+    prolonged,
+    relocated,
+)
 from dgpc_cli.geodesics.extent import extent_axes
 from dgpc_cli.geodesics.rectangle import largest_rectangle
 from dgpc_cli.geodesics.tracing import plane_axes, principal_frame
@@ -173,13 +179,16 @@ def _auto_sections(mesh: ReferenceMesh, frame: ReferenceMesh) -> list[Candidate]
 
 
 def _build(domain: ReferenceMesh, method: str, cand: Candidate, size: dict,
-           extend_length: float, tracing: MeshTracing | None = None) -> MeshGrid:
+           extend_length: float, tracing: MeshTracing | None = None,
+           relocate: bool = False) -> MeshGrid:
     if method == "project":
         return init_project(domain, **cand.kwargs, **size)
     kwargs = dict(cand.kwargs)
     curve = kwargs.pop("curve", None)
     if curve is not None:
-        base = prolonged(curve.curve, domain.vertices, domain.faces, extend_length,
+        base = curve.curve if not relocate else relocated(curve.curve, domain.vertices,
+                                                          domain.faces)
+        base = prolonged(base, domain.vertices, domain.faces, extend_length,
                          tracer=tracing.tracer if tracing is not None else None)
         return init_geodesic(domain, base=base, base_name=curve.name, **size, tracing=tracing)
     return init_geodesic(domain, **kwargs, **size, tracing=tracing)
@@ -187,14 +196,16 @@ def _build(domain: ReferenceMesh, method: str, cand: Candidate, size: dict,
 
 def evaluate(mesh: ReferenceMesh, domain: ReferenceMesh, method: str, cand: Candidate,
              size: dict, extend_length: float, *, explicit: bool = False,
-             tracing: MeshTracing | None = None,
-             surface=None) -> tuple[dict, Outcome | None]:
+             tracing: MeshTracing | None = None, surface=None,
+             relocate: bool = False) -> tuple[dict, Outcome | None]:
     """One candidate made on ``domain``, made sound and measured on ``mesh``: its record and
     its :class:`Outcome` (None when it fails or nothing sound is left; an explicit choice's
     DgpcError is raised). ``tracing`` (of ``domain``) and ``surface`` (the
-    ``core.reference.ReferenceSurface`` of ``mesh``) are made once when given."""
+    ``core.reference.ReferenceSurface`` of ``mesh``) are made once when given; ``relocate``:
+    ``domain`` is not ``mesh`` continued (a patch's surroundings), so a boundary curve's faces
+    are found on it again."""
     try:
-        grid = _build(domain, method, cand, size, extend_length, tracing)
+        grid = _build(domain, method, cand, size, extend_length, tracing, relocate)
     except NetTooLarge:
         raise
     except DgpcError as err:
@@ -283,14 +294,15 @@ def no_sound_net(mesh: ReferenceMesh, tried: list[dict]) -> DgpcError:
 def evaluate_all(mesh: ReferenceMesh, domain: ReferenceMesh, method: str,
                  cands: list[Candidate], size: dict, extend_length: float, *,
                  explicit: bool = False, tracing: MeshTracing | None = None,
-                 surface=None) -> list[tuple[dict, Outcome | None]]:
+                 surface=None, relocate: bool = False) -> list[tuple[dict, Outcome | None]]:
     """:func:`evaluate` of each candidate; an ``explicit`` choice (one candidate) that leaves
     no sound net, or one of less than :data:`MIN_KEPT` of its quads, is refused (DgpcError
-    naming the automatic candidate that works); ``tracing``, ``surface`` as there."""
+    naming the automatic candidate that works); ``tracing``, ``surface``, ``relocate`` as
+    there."""
     if method == "geodesic" and tracing is None:
         tracing = MeshTracing.of(domain)
     pairs = [evaluate(mesh, domain, method, cand, size, extend_length, explicit=explicit,
-                      tracing=tracing, surface=surface) for cand in cands]
+                      tracing=tracing, surface=surface, relocate=relocate) for cand in cands]
     if explicit and (pairs[0][1] is None or pairs[0][1].kept < MIN_KEPT):
         _refuse(mesh, domain, method, cands[0], [pairs[0][0]], [pairs[0][1]], size,
                 extend_length)

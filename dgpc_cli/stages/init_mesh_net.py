@@ -31,6 +31,23 @@ class MeshNet:
 
     net: NetArtifact
     mesh: ReferenceMesh
+    #: Why one net is poor here (``--method geodesic``: it covers less than the search aims
+    #: at, or folds, after its quick fit), None when it is not.
+    poor: str | None = None
+
+
+def _poor(found) -> str | None:
+    """Why the net the search chose is poor (see :class:`MeshNet`), or None."""
+    from dgpc_cli.stages.init_search import EXTEND_BELOW
+
+    quick = found.chosen.quick or {}
+    if "coverage" not in quick:
+        return None
+    folds = bool(quick.get("folded"))
+    if quick["coverage"] >= EXTEND_BELOW and not folds:
+        return None
+    return (f"the net covers {100 * quick['coverage']:.1f} % of the mesh after a quick fit"
+            + (" and folds" if folds else ""))
 
 
 def _summary(method: str, net: NetArtifact, mesh: ReferenceMesh, label: str, outcome,
@@ -92,4 +109,4 @@ def mesh_net(reference: Path, method: str, *, base: str | None, direction, angle
         log.warning("%s", outcome.note)
     if say is not None:
         say(_summary(method, net, mesh, grid.label, outcome, tried, found))
-    return MeshNet(net=net, mesh=mesh)
+    return MeshNet(net=net, mesh=mesh, poor=_poor(found) if found is not None else None)

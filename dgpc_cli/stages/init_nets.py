@@ -68,10 +68,14 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
                                   "angle": angle, "rows": rows, "cols": cols,
                                   "spacing": spacing,
                                   "extend": net.parameters.get("extend", 0.0),
+                                  "given_extend": extend,
                                   "largest_component": largest_component},
                                  units=units, fmt=fmt, force=force, check=check, say=say)
             if written:
                 return written
+        elif made.poor and say is not None:
+            say(f"init: {made.poor}; --patches auto cuts the mesh into patches, one net each, "
+                "where one net's strips vary in width more than 3x")
     else:
         from dgpc_cli.stages.init_quads import init_from_quads
 

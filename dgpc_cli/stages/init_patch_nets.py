@@ -23,12 +23,39 @@ def _record_choice(net: NetArtifact, label: str, outcome, tried: list, options: 
     net.parameters.update(base=options["base"] or ("auto" if method == "geodesic" else None),
                           angle=options["angle"],
                           largest_component=options["largest_component"])
-    if options["extend"] > 0 and "extend" not in net.parameters:
+    searched = "search" in net.data["init"]
+    if options["extend"] > 0 and "extend" not in net.parameters and not searched:
         net.parameters["extend"] = options["extend"]
     net.data["init"]["choice"] = {"chosen": label, "coverage": outcome.coverage,
                                   "tried": tried}
+    if searched:
+        net.data["init"]["choice"]["search"] = net.data["init"].pop("search")
     if outcome.note:
         log.warning("%s", outcome.note)
+
+
+def _searched(m, whole, options: dict):
+    """The net of one patch ``m`` of the mesh ``whole`` by ``init``'s search
+    (``stages.init_search``: base curves, overhang, size, ranked after a quick fit), as for a
+    single net, its overhang running onto the whole mesh around the patch
+    (``geodesics.extension.surrounded``; the net's ``data.surroundings``, the whole mesh, tells
+    ``optimize`` to fit it there); the search's record rides on the net
+    (``data.init.search``) until the choice is recorded."""
+    from dgpc_cli.stages.init_mesh import DEFAULT_COLS
+    from dgpc_cli.stages.init_search import search
+
+    cols = options["cols"]
+    if cols is None and options["spacing"] is None:
+        cols = DEFAULT_COLS         # a patch is smaller than the whole: its size not searched
+    found = search(m, base=options["base"], direction=options["direction"],
+                   angle=options["angle"], rows=options["rows"], cols=cols,
+                   spacing=options["spacing"], extend=None, surroundings=whole)
+    net = found.grid.net
+    if found.extend > 0:
+        net.parameters["extend"] = found.extend
+        net.data["init"]["overhang_onto"] = "the mesh around the patch"
+    net.data["init"]["search"] = found.record
+    return found.grid, found.outcome, [t.record for t in found.trials]
 
 
 def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, *,
@@ -38,12 +65,20 @@ def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, 
     options); the JSON paths written, or None when one patch is kept (``single`` then records
     why, and the caller writes it as usual). ``check(stem, force, *extra)`` refuses a target
     before anything is written; ``say``, when given, gets the lines that say why and what."""
-    from dgpc_cli.geodesics.extension import continued, largest_unfolded
+    from dgpc_cli.core.reference import ReferenceSurface
+    from dgpc_cli.geodesics.extension import (
+        FIT_REACH,
+        continued,
+        largest_unfolded,
+        surrounded,
+    )
     from dgpc_cli.stages.init_choice import choose
     from dgpc_cli.stages.init_patches import plan, ratio_text
     from dgpc_cli.stages.inspect import summarize
 
     def make(m):
+        if options["method"] == "geodesic" and options.get("given_extend", 0.0) is None:
+            return _searched(m, mesh, options)
         # --extend is a fraction of the whole mesh's diagonal: the same length on every patch,
         # as far as the patch's continuation does not fold at its concave boundary
         fraction = options["extend"] * mesh.bbox_diagonal / m.bbox_diagonal
@@ -87,11 +122,15 @@ def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, 
         net.data["patches"] = {**record, "name": f"p{k}",
                                "own_cuts": [c.tolist() for c in p.patch.cuts]}
         net.inputs["mesh"] = file_input(mesh.path, folder)
+        if net.extend and net.data["init"].get("overhang_onto"):
+            net.data["surroundings"] = net.inputs["mesh"]
         net.inputs["reference"] = net.data["reference"] = relative_input(p.mesh.path, folder,
                                                                           p.obj)
         net.units = units
         net.parameters["units"] = units
-        net.metrics = summarize(net, mesh=p.mesh)
+        net.metrics = summarize(net, mesh=p.mesh, surface=(
+            ReferenceSurface.from_mesh(surrounded(p.mesh, mesh, FIT_REACH * net.extend))
+            if net.data.get("surroundings") else None))
         out = stem.parent / f"{stem.name}.p{k}"
         files = {p.mesh.path: p.obj, **with_3dm(net_files(out, net), out, fmt)}
         write_files(files, force=force)

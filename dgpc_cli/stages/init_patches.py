@@ -11,8 +11,9 @@ its strips to the patch's outline, cut curves included.
 ``--patches auto`` first makes the single net and measures its *width ratio*: per strip, the
 widest over the narrowest of its rows on the reference, the worst strip's. At most
 :data:`WIDTH_RATIO_LIMIT` the single net is kept; above, the patch whose net is worst is
-bisected as long as its ratio is above the limit, the bisection lowers it, and there are fewer
-than :data:`MAX_PATCHES` patches.
+bisected as long as its ratio is above the limit, the bisection lowers it (or leaves it within
+:data:`RATIO_SLACK` while the halves' nets cover :data:`COVERAGE_GAIN` more of the patch), and
+there are fewer than :data:`MAX_PATCHES` patches.
 
 Every net records why (``data.patches``, carried on by ``optimize``): the single net's
 candidate, coverage and width ratio, the limit, K, every cut (its curves, in the net's unit,
@@ -39,6 +40,10 @@ log = logging.getLogger(__name__)
 
 #: A single net whose worst strip varies in width by more than this is split (auto).
 WIDTH_RATIO_LIMIT = 3.0
+#: A cut whose patches' strips vary no more than this fraction beyond the patch's is kept
+#: when their nets cover at least :data:`COVERAGE_GAIN` more of it (a net across the patch
+#: folds or is shrunk where the two halves' nets clad it).
+RATIO_SLACK, COVERAGE_GAIN = 0.1, 0.05
 #: The most patches ``--patches auto`` makes.
 MAX_PATCHES = 4
 #: A net vertex lies on the reference when it is within this fraction of the net's mean edge of
@@ -138,7 +143,7 @@ def plan(mesh: ReferenceMesh, count: int | None, stem: Path, single: np.ndarray,
         why = (f"--patches {count}; the single net's strips vary in width up to "
                f"{ratio_text(ratio)} along them (strip {first['strip']})")
     else:
-        nets, cuts, stop = _auto(whole, ratio, path, make, mesh)
+        nets, cuts, stop = _auto(whole, ratio, coverage, path, make, mesh)
         if not nets:
             record.update(count=1, cuts=[], reason=(
                 f"the single net's strips vary in width up to {ratio_text(ratio)} along them "
@@ -173,15 +178,17 @@ def _renamed(p: PatchNet, path: Path) -> PatchNet:
     return PatchNet(p.patch, mesh, obj, p.net, p.outcome, p.tried, p.width, p.label)
 
 
-def _auto(whole: Patch, ratio: float, path, make: NetMaker, mesh: ReferenceMesh):
+def _auto(whole: Patch, ratio: float, coverage: float, path, make: NetMaker,
+          mesh: ReferenceMesh):
     """``--patches auto`` above the limit: bisect the worst patch while it helps (see the
-    module); the patch nets, the cuts made and why the splitting stopped."""
+    module); the patch nets, the cuts made and why the splitting stopped. ``coverage``: the
+    single net's coverage of the mesh."""
     cuts: list[dict] = []
-    current = [(whole, ratio, None)]
+    current = [(whole, ratio, None, coverage)]
     serial = 0
     while True:
         k = max(range(len(current)), key=lambda i: (_key(current[i][1]), -i))
-        patch, worst, _ = current[k]
+        patch, worst, _, covered = current[k]
         if worst is not None and worst <= WIDTH_RATIO_LIMIT:
             stop = f"every patch's strips vary at most {WIDTH_RATIO_LIMIT:g}x"
             break
@@ -197,12 +204,18 @@ def _auto(whole: Patch, ratio: float, path, make: NetMaker, mesh: ReferenceMesh)
         pa = _patch_net(a, path(serial - 1), make, mesh)
         pb = _patch_net(b, path(serial), make, mesh)
         new = max(_key(pa.width["ratio"]), _key(pb.width["ratio"]))
-        if new >= _key(worst):
+        both = ((a.area * pa.outcome.coverage + b.area * pb.outcome.coverage)
+                / (a.area + b.area))
+        gain = both - covered
+        if new >= _key(worst) and not (gain >= COVERAGE_GAIN
+                                       and new <= _key(worst) * (1 + RATIO_SLACK)):
             stop = (f"cutting the worst patch gives {ratio_text(new)}, no better than "
-                    f"{ratio_text(worst)}")
+                    f"{ratio_text(worst)}"
+                    + (f", and covers {100 * gain:.1f} % more of it" if gain > 0 else ""))
             break
         cuts.append({"curves": curves, **rec})
-        current[k:k + 1] = [(a, pa.width["ratio"], pa), (b, pb.width["ratio"], pb)]
+        current[k:k + 1] = [(a, pa.width["ratio"], pa, pa.outcome.coverage),
+                            (b, pb.width["ratio"], pb, pb.outcome.coverage)]
     if len(current) == 1:
         return [], cuts, stop
     return [c[2] for c in current], cuts, stop

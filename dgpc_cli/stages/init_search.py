@@ -36,7 +36,7 @@ import numpy as np
 
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.errors import DgpcError
-from dgpc_cli.geodesics.extension import continued, largest_unfolded
+from dgpc_cli.geodesics.extension import continued, largest_unfolded, surrounded
 from dgpc_cli.io.mesh import ReferenceMesh
 from dgpc_cli.metrics.coverage import coverage, default_tolerance
 from dgpc_cli.metrics.degenerate import degeneracies
@@ -189,9 +189,12 @@ def _rank(trials: list[Trial]) -> tuple[Trial, str]:
 def search(mesh: ReferenceMesh, *, base: str | None = None, direction=None,
            angle: float | None = None, rows: int | None = None, cols: int | None = None,
            spacing: float | None = None, extend: float | None = None,
+           surroundings: ReferenceMesh | None = None,
            progress: Callable[[str], None] | None = None) -> SearchResult:
     """The net ``init --method geodesic`` writes for ``mesh`` (see the module); ``extend``
-    None: searched, else that overhang (``--extend``)."""
+    None: searched, else that overhang (``--extend``). ``surroundings``: the whole mesh
+    ``mesh`` is a patch of, which an overhang runs onto
+    (:func:`~dgpc_cli.geodesics.extension.surrounded`) instead of the patch's continuation."""
     say = progress or (lambda text: None)
     given_extend = extend is not None
     size = {"rows": rows, "cols": cols, "spacing": spacing}
@@ -205,7 +208,8 @@ def search(mesh: ReferenceMesh, *, base: str | None = None, direction=None,
         """The mesh continued by ``e`` (made once), its tracing and its surface (what the
         quick fit fits to)."""
         if e not in domains:
-            dom = continued(mesh, e)
+            dom = (continued(mesh, e) if surroundings is None
+                   else surrounded(mesh, surroundings, e))
             domains[e] = (dom, MeshTracing.of(dom),
                           reference if not e else ReferenceSurface(dom.vertices, dom.faces))
         return domains[e][0]
@@ -233,7 +237,8 @@ def search(mesh: ReferenceMesh, *, base: str | None = None, direction=None,
                 + f" ({i + 1}/{len(cand_list)})")
             [(record, outcome)] = evaluate_all(mesh, dom, "geodesic", [cand], sz,
                                                e * diagonal, explicit=explicit,
-                                               tracing=domains[e][1], surface=reference)
+                                               tracing=domains[e][1], surface=reference,
+                                               relocate=surroundings is not None and e > 0)
             record.update(cand.record())
             record.update({"extend": e, "cols": sz["cols"]})
             t = Trial(cand, e, sz["cols"], record, outcome)

@@ -130,6 +130,24 @@ def summarize(net: NetArtifact, *, axis=None, mesh=None,
     return metrics
 
 
+def net_fit_surface(net: NetArtifact, json_path: Path, mesh):
+    """What the net is fitted to (None without ``mesh``, its reference): the reference
+    continued past its boundary as far as the net may run (``init --extend``); for a patch's
+    net recording the whole mesh as its ``data.surroundings`` (``init --patches``), the whole
+    mesh around the patch instead (``geodesics.extension.surrounded``)."""
+    from dgpc_cli.geodesics.extension import FIT_REACH, fit_surface, surrounded
+    from dgpc_cli.io.mesh import load_mesh
+
+    if mesh is None:
+        return None
+    record = net.data.get("surroundings")
+    if not net.extend or not record:
+        return fit_surface(mesh, net.extend)
+    whole = load_mesh(recorded_file(record, json_path, "data.surroundings"),
+                      pieces=net.reference_pieces)
+    return surrounded(mesh, whole, FIT_REACH * net.extend)
+
+
 def inspect_net(net: NetArtifact, json_path: Path, *, axis=None,
                 against: NetArtifact | None = None, coverage_tol=None) -> dict:
     """Metrics of a net artifact read from ``json_path``, with its recorded reference;
@@ -138,6 +156,11 @@ def inspect_net(net: NetArtifact, json_path: Path, *, axis=None,
     if against is not None and against.shape != net.shape:
         raise DgpcError(f"--against: grid {against.shape[0]}×{against.shape[1]} differs from "
                         f"{net.shape[0]}×{net.shape[1]}", source="--against")
+    from dgpc_cli.core.reference import ReferenceSurface
+
     tol = None if coverage_tol is None else coverage_tol.in_units(net.units, net.units)
-    return summarize(net, axis=axis, mesh=recorded_reference(net, json_path), against=against,
+    mesh = recorded_reference(net, json_path)
+    surface = (ReferenceSurface.from_mesh(net_fit_surface(net, json_path, mesh))
+               if mesh is not None and net.data.get("surroundings") else None)
+    return summarize(net, axis=axis, mesh=mesh, against=against, surface=surface,
                      coverage_tol=tol)

@@ -14,12 +14,11 @@ import numpy as np
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.core.solver import Schedule, parse_weight
 from dgpc_cli.errors import DgpcError
-from dgpc_cli.geodesics.extension import fit_surface
 from dgpc_cli.io.artifact import artifact_paths, file_input, recorded_file, resolve_input
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import NetArtifact, read_net
 from dgpc_cli.io.units import from_mm, mm_per_unit
-from dgpc_cli.stages.inspect import summarize
+from dgpc_cli.stages.inspect import net_fit_surface, summarize
 from dgpc_cli.stages.modes import RELAX, SOFT, describe_weights
 from dgpc_cli.stages.optimize import OptimizeOutcome, boundary_vertices, judge, optimize_net
 from dgpc_cli.stages.polish import polish_weights
@@ -104,7 +103,7 @@ def prepare_optimize(stem: Path, settings: OptimizeSettings, *, reference: Path 
         schedules = polish_weights(net.f, schedules, weights)
     settings.schedules = schedules
     mm = mm_per_unit(net.units)      # the stages compute in mm (dgpc_cli.io.units)
-    fit = fit_surface(mesh, net.extend) if mesh is not None else None
+    fit = net_fit_surface(net, json_path, mesh)
     surface = ReferenceSurface(fit.vertices * mm, fit.faces) if fit is not None else None
     # a net that runs past its reference (init --extend) has no rim on its boundary
     rim = (boundary_vertices(net.f_mm, surface)
@@ -175,6 +174,9 @@ def optimized_artifact(prepared: PreparedNet, outcome: OptimizeOutcome, output: 
         data["patches"] = net.data["patches"]
     if mesh is not None:
         inputs["reference"] = data["reference"] = file_input(mesh.path, folder)
+        if net.extend and net.data.get("surroundings"):
+            inputs["surroundings"] = data["surroundings"] = file_input(
+                resolve_input(net.data["surroundings"], prepared.json_path), folder)
     if handle_ids is not None:
         inputs["handles"] = file_input(handles, folder)
         data["handles"] = {"ids": handle_ids.tolist(), "targets": (handle_targets / mm).tolist()}
