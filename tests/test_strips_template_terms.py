@@ -1,5 +1,5 @@
 """Terms of the one-template fit of planarize-strips (template isometry, gauge, ruling
-fairness, seam steps) and the shared planarity/lateral/closeness terms on its layout: Jacobians
+fairness, seam) and the shared planarity/lateral/closeness terms on its layout: Jacobians
 against finite differences, fixed patterns, and what their residuals measure."""
 
 import numpy as np
@@ -12,7 +12,7 @@ from dgpc_cli.core.constraints.template import (
     plane_offsets,
     ruling_fairness,
     ruling_turn,
-    seam_steps,
+    seam,
     strip_quad_samples,
     template_gauge,
     template_isometry,
@@ -20,8 +20,7 @@ from dgpc_cli.core.constraints.template import (
     template_outline,
 )
 
-NAMES = ["template_isometry", "template_gauge", "template_order", "ruling_fairness",
-         "seam_steps",
+NAMES = ["template_isometry", "template_gauge", "template_order", "ruling_fairness", "seam",
          "plane_offsets", "planarity", "lateral", "surface_closeness", "ruling_turn"]
 #: Terms on the shared-outline layout (one development per strip, outline coefficients).
 OUTLINE_NAMES = ["template_isometry", "template_order", "template_outline", "ruling_fairness",
@@ -62,7 +61,7 @@ def _terms(layout, rng):
             "template_outline": lambda x: template_outline(x, layout, 0.4, 0.7),
             "ruling_turn": lambda x: ruling_turn(x, layout, 0.36),
             "ruling_fairness": lambda x: ruling_fairness(x, layout),
-            "seam_steps": lambda x: seam_steps(x, layout, *steps),
+            "seam": lambda x: seam(x, layout, *steps),
             "plane_offsets": lambda x: plane_offsets(x, layout, samples, frozen.p, frozen.n),
             "planarity": lambda x: planarity(x, layout),
             "lateral": lambda x: lateral(x, layout, points, t),
@@ -164,7 +163,7 @@ def test_ruling_turn_holds_for_rulings_within_the_angle_only():
     assert worst([0.0, 180.0, 180.0]) > 1e-3
 
 
-def test_seam_steps_are_the_seam_metric_at_their_feet():
+def test_seam_residuals_are_the_seam_steps_at_their_feet():
     """Two strips whose shared geodesic's copies lie apart (B of strip 0 lifted along z, its
     vertices slid half a row): the residuals at the feet of each copy on the other, along the
     normal, are the seam steps that the fabrication metrics measure; zero for copies that
@@ -187,7 +186,7 @@ def test_seam_steps_are_the_seam_metric_at_their_feet():
         t = closest_on_polylines(X[None], Y[None])[2][0]
         i = np.clip(np.floor(t).astype(int), 0, m - 2)
         ids, ends = layout.vid[:, 1], np.stack([layout.vid[i, 2], layout.vid[i + 1, 2]], -1)
-        phi, _ = seam_steps(x, layout, ids, ends, t - i, np.tile(normal, (m, 1)))
+        phi, _ = seam(x, layout, ids, ends, t - i, np.tile(normal, (m, 1)))
         step, _ = seam_offsets(X, Y, np.tile(normal, (m, 1)))
         assert np.abs(phi) == pytest.approx(step, abs=1e-12)
     assert np.abs(phi).max() > 0.01                              # the lift (less the tilt)

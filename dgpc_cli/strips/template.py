@@ -13,9 +13,9 @@ place. The fit (:func:`fit_template`) solves, by guided projection, for one flat
   neighbouring rulings within 20° (:func:`~dgpc_cli.core.constraints.template.ruling_turn`);
 * soft: the strips' quads (3 × 3 samples of each) close to the net (point-to-plane, §5.1),
   the boundary vertices on their geodesic (across it and along the net's normal), and the
-  seams: every vertex of a strip's copy of a shared geodesic on its neighbour's copy along the
-  normal (:func:`~dgpc_cli.core.constraints.template.seam_steps`, the seam step that
-  :mod:`~dgpc_cli.strips.fabrication` measures, its feet re-taken every round);
+  seams: every vertex of a strip's copy of a shared geodesic on its neighbour's copy, along the
+  normal and across it (:func:`~dgpc_cli.core.constraints.template.seam`: the seam step and
+  gap that :mod:`~dgpc_cli.strips.fabrication` measures, its feet re-taken every round);
 * regularizers: fairness of the ruling vectors and of the vertices' slides along the geodesics,
   and a proximal term on the slides within a round.
 
@@ -54,7 +54,7 @@ from dgpc_cli.core.constraints.template import (
     plane_offsets,
     ruling_fairness,
     ruling_turn,
-    seam_steps,
+    seam,
     strip_quad_samples,
     template_gauge,
     template_isometry,
@@ -96,7 +96,7 @@ ROUND_FACTORS = (1.0, 0.1, 0.01, 1e-3)
 #: folded quad, no crossing rulings).
 ORDER_MARGIN = 0.2
 #: Default weight of the seam term (each copy of a shared geodesic on the other, along the
-#: normal; lowered over the rounds with the other soft terms: see the README's trade-off table).
+#: normal and across; lowered over the rounds with the other soft terms: see the README's trade-off table).
 SEAM_WEIGHT = 2e-2
 #: Tolerance (hard residual at mean edge length 1) and iteration limit of the fit.
 FIT_TOL = 1e-10
@@ -311,7 +311,7 @@ def _soft_terms(x, setup: TemplateProblem, factor: float):
                           const(w["normal"]), False))
     if w["seam"] > 0 and S > 1:
         frames = _seam_frames(setup, A, B)
-        terms.append(Term("seam", lambda x: seam_steps(x, layout, *frames), const(w["seam"]),
+        terms.append(Term("seam", lambda x: seam(x, layout, *frames), const(w["seam"]),
                           False))
     return terms
 
@@ -339,24 +339,29 @@ def _boundary_normals(setup, A, B):
 
 
 def _seam_frames(setup, A, B):
-    """The frames of :func:`~dgpc_cli.core.constraints.template.seam_steps` at the strips ``A,
-    B (S, m, 3)``: every vertex of both copies of a shared geodesic (strip s's B, strip s+1's
-    A), the segment of the other copy holding its foot, the fraction there and the net's
-    normal (the mean of both strips') at the foot."""
+    """The frames of :func:`~dgpc_cli.core.constraints.template.seam` at the strips ``A, B (S,
+    m, 3)``: every vertex of both copies of a shared geodesic (strip s's B, strip s+1's A), the
+    segment of the other copy holding its foot, the fraction there, and twice (a step and a
+    gap) a direction: the net's normal at the foot (the mean of both strips') and the one
+    across the other copy in the tangent plane."""
     layout = setup.layout
     n = _row_normals(setup.P, setup.Q)
     shared = unit(n[:-1] + n[1:])                                          # (S-1, m, 3)
     on_b, on_a = layout.vid[:, 1:-1:2].T, layout.vid[:, 2::2].T            # (S-1, m)
-    ids, ends, fractions, normals = [], [], [], []
+    ids, ends, fractions, directions = [], [], [], []
     for X, Y, own, other in ((B[:-1], A[1:], on_b, on_a), (A[1:], B[:-1], on_a, on_b)):
         t = closest_on_polylines(X, Y)[2]
-        i = np.clip(np.floor(t).astype(int), 0, layout.m - 2)
-        ids.append(own.ravel())
-        ends.append(np.stack([np.take_along_axis(other, i, 1),
-                              np.take_along_axis(other, i + 1, 1)], -1).reshape(-1, 2))
-        fractions.append((t - i).ravel())
-        normals.append(_at_parameters(shared, t).reshape(-1, 3))
-    return tuple(np.concatenate(a) for a in (ids, ends, fractions, normals))
+        i = np.clip(np.floor(t).astype(int), 0, layout.m - 2)[..., None]
+        normal = _at_parameters(shared, t)
+        along = np.take_along_axis(Y, i + 1, 1) - np.take_along_axis(Y, i, 1)
+        segment = np.stack([np.take_along_axis(other, i[..., 0], 1),
+                            np.take_along_axis(other, i[..., 0] + 1, 1)], -1).reshape(-1, 2)
+        for d in (normal, unit(np.cross(normal, along))):
+            ids.append(own.ravel())
+            ends.append(segment)
+            fractions.append((t - i[..., 0]).ravel())
+            directions.append(d.reshape(-1, 3))
+    return tuple(np.concatenate(a) for a in (ids, ends, fractions, directions))
 
 
 @dataclass

@@ -19,9 +19,10 @@ Terms of its own (``term(x, layout, ...) -> (phi, J)``, value-independent COO pa
 * template gauge: ``a_0 = (0, 0)``, ``b_0`` on the x-axis (the template's rigid motions);
 * ruling fairness: second differences along u of the ruling vectors ``B_u − A_u`` (rulings
   that turn smoothly: score lines that do not zigzag);
-* seam steps: ``⟨N, X − foot⟩`` of every vertex X of one strip's copy of a shared geodesic
-  from its foot on the neighbour's copy (segment and fraction held for a round), along the
-  net's normal N: the seam step of the fabrication metrics, each copy on the other;
+* seam: ``⟨d, X − foot⟩`` of every vertex X of one strip's copy of a shared geodesic from its
+  foot on the neighbour's copy (segment and fraction held for a round), along the net's
+  normal and across in the tangent plane: the seam step and gap of the fabrication metrics,
+  each copy on the other;
 * template order and ruling turn (slack form of inequalities): no folded template quad, and
   neighbouring rulings within an angle;
 * template outline (variant shared outline, one development per strip): every development's
@@ -208,16 +209,17 @@ def ruling_fairness(x, layout: StripSetLayout):
     return phi, jacobian(phi.size, layout.size, *blocks)
 
 
-def seam_steps(x, layout: StripSetLayout, ids, ends, fractions, normals):
-    """Residuals ``⟨N_k, p_(i_k) − (1 − τ_k) p_(j_k) − τ_k p_(l_k)⟩`` (1 per row) of the vertices
-    ``ids (k,)`` from the points at the ``fractions τ (k,)`` of the segments ``ends (k, 2)`` =
-    ``(j, l)`` (a neighbour's copy of the shared geodesic), along the unit ``normals (k, 3)``:
-    the seam step of :func:`~dgpc_cli.strips.fabrication.seam_offsets` with its foot (segment
-    and fraction) and normal held. Linear."""
+def seam(x, layout: StripSetLayout, ids, ends, fractions, directions):
+    """Residuals ``⟨d_k, p_(i_k) − (1 − τ_k) p_(j_k) − τ_k p_(l_k)⟩`` (1 per row) of the
+    vertices ``ids (k,)`` from the points at the ``fractions τ (k,)`` of the segments ``ends (k,
+    2)`` = ``(j, l)`` (a neighbour's copy of the shared geodesic), along the unit ``directions
+    (k, 3)``: with the net's normal the seam step of
+    :func:`~dgpc_cli.strips.fabrication.seam_offsets`, across the segment in the tangent plane
+    its gap, each with its foot (segment and fraction) held. Linear."""
     p, _ = layout.split(x)
     ids, ends = np.asarray(ids), np.asarray(ends)
     tau = np.asarray(fractions, dtype=float)[:, None]
-    n = np.asarray(normals, dtype=float).reshape(-1, 3)
+    n = np.asarray(directions, dtype=float).reshape(-1, 3)
     foot = (1.0 - tau) * p[ends[:, 0]] + tau * p[ends[:, 1]]
     phi = np.einsum("kj,kj->k", p[ids] - foot, n)
     rows = np.arange(phi.size)[:, None]
