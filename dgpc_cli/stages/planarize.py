@@ -251,9 +251,9 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
     ruling fairness is raised tenfold until one keeps them in order (:data:`FAIRNESS_STEPS`).
     The fits hold the seams with ``seam_weight``; when none of them keeps within ``margin``
     (below), they are tried again without the seam term (closer to the net, seams that step
-    more) and the closest of all is kept. Without such a fit, or when the best one deviates from the net by more than ``margin`` of
-    the width beyond the per-strip strips, returns ``(None, record)``, the record's
-    ``rejected`` saying why.
+    more) and the closest of all is kept. Without such a fit, or when the best one deviates
+    from the net by more than ``margin`` of the width beyond the per-strip strips, returns
+    ``(None, record)``, the record's ``rejected`` saying why.
     """
     f = np.asarray(f, dtype=float)
     columns = [s.v for s in strips]

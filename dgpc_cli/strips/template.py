@@ -96,7 +96,8 @@ ROUND_FACTORS = (1.0, 0.1, 0.01, 1e-3)
 #: folded quad, no crossing rulings).
 ORDER_MARGIN = 0.2
 #: Default weight of the seam term (each copy of a shared geodesic on the other, along the
-#: normal and across; lowered over the rounds with the other soft terms: see the README's trade-off table).
+#: normal and across; lowered over the rounds with the other soft terms): see the README's
+#: trade-off table.
 SEAM_WEIGHT = 2e-2
 #: Tolerance (hard residual at mean edge length 1) and iteration limit of the fit.
 FIT_TOL = 1e-10
@@ -369,8 +370,8 @@ class TemplateProblem:
     """What every start of a template fit shares (see :func:`fit_template`): the net strips
     ``P, Q (S, m, 3)`` scaled to mean edge length 1 about ``center`` (``scale``), the layout,
     the net as a reference surface and the sample points of the closeness, the end v-edges
-    and the weights; the solver's workspace (one pattern for every start
-    and round: one symbolic factorization)."""
+    and the weights; the solver's workspace (one pattern for every start and round, one
+    symbolic factorization, but for the seam term's feet when they move to another segment)."""
 
     layout: StripSetLayout
     P: np.ndarray
