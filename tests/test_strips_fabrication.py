@@ -114,6 +114,29 @@ def test_seam_step_follows_the_net_normal_on_a_curved_net():
         assert s["seam_gap"][1] == pytest.approx(gap, abs=1e-6), move
 
 
+def test_copies_on_one_curved_geodesic_with_vertices_apart_step_by_the_chord_sag():
+    """Both copies of a shared geodesic on the same arc (radius R, the net's normal radial), one
+    with its vertices half a row along from the other's: each inner vertex stands off the
+    other copy's chord by the sag ``R (1 − cos(φ/2))`` along the normal (φ the row's angle),
+    with no gap: the step two differently bent copies of one template leave even on the
+    curve."""
+    from dgpc_cli.strips.fabrication import seam_offsets
+
+    R, phi = 3000.0, np.radians(6.0)
+    k = np.arange(9)
+
+    def arc(a):
+        return np.stack([R * np.cos(a), np.zeros_like(a), R * np.sin(a)], axis=-1)
+
+    X, Y = arc(k * phi), arc(np.r_[0.0, (k[:-1] + 0.5) * phi, k[-1] * phi])
+    normals = X / R
+    step, gap = seam_offsets(X[1:-1], Y, normals[1:-1])
+    assert step == pytest.approx(R * (1 - np.cos(phi / 2)), rel=1e-9)
+    assert gap == pytest.approx(0.0, abs=1e-9)
+    same, _ = seam_offsets(X, X, normals)
+    assert same == pytest.approx(0.0, abs=1e-9)
+
+
 def test_a_zigzag_ruling_turns_by_its_angle():
     f = flat_net()
     _, A, B = strips_of(f)[0]

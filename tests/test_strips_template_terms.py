@@ -45,8 +45,12 @@ def _state(layout, rng):
 
 
 def _terms(layout, rng):
-    d = rng.standard_normal((2, layout.m, layout.S - 1, 3))
+    k = layout.m * (layout.S - 1)
+    d = rng.standard_normal((k, 3))
     d /= np.linalg.norm(d, axis=-1, keepdims=True)
+    feet = rng.integers(0, layout.n_vertices - 1, k)
+    steps = (rng.integers(0, layout.n_vertices, k), np.stack([feet, feet + 1], -1),
+             rng.random(k), d)
     points = rng.standard_normal((layout.n_vertices, 3))
     t = rng.standard_normal((layout.n_vertices, 3))
     samples = strip_quad_samples(layout)
@@ -57,7 +61,7 @@ def _terms(layout, rng):
             "template_outline": lambda x: template_outline(x, layout, 0.4, 0.7),
             "ruling_turn": lambda x: ruling_turn(x, layout, 0.36),
             "ruling_fairness": lambda x: ruling_fairness(x, layout),
-            "seam": lambda x: seam(x, layout, d),
+            "seam": lambda x: seam(x, layout, *steps),
             "plane_offsets": lambda x: plane_offsets(x, layout, samples, frozen.p, frozen.n),
             "planarity": lambda x: planarity(x, layout),
             "lateral": lambda x: lateral(x, layout, points, t),
@@ -157,3 +161,32 @@ def test_ruling_turn_holds_for_rulings_within_the_angle_only():
     assert worst([0.0, 21.0, 42.0]) > 1e-3
     assert worst([0.0, -25.0, -20.0]) > 1e-3
     assert worst([0.0, 180.0, 180.0]) > 1e-3
+
+
+def test_seam_residuals_are_the_seam_steps_at_their_feet():
+    """Two strips whose shared geodesic's copies lie apart (B of strip 0 lifted along z, its
+    vertices slid half a row): the residuals at the feet of each copy on the other, along the
+    normal, are the seam steps that the fabrication metrics measure; zero for copies that
+    coincide."""
+    from dgpc_cli.strips.fabrication import seam_offsets
+    from dgpc_cli.strips.template import closest_on_polylines
+
+    m = 6
+    u = np.linspace(0.0, 1.0, m)
+    g = np.c_[u, np.zeros(m), 0.3 * u ** 2]                      # the shared geodesic, curved
+    layout = StripSetLayout(m, 2)
+    A = np.stack([g - [0.0, 0.4, 0.0], g])
+    B = np.stack([g, g + [0.0, 0.4, 0.0]])
+    x0 = layout.pack(A, B, np.zeros((m, 2, 2)))
+    lifted = B.copy()
+    lifted[0, 1:-1] = 0.5 * (g[1:-1] + g[2:]) + [0.0, 0.0, 0.02]  # slid and lifted
+    x1 = layout.pack(A, lifted, np.zeros((m, 2, 2)))
+    normal = np.array([0.0, 0.0, 1.0])
+    for x, (X, Y) in ((x0, (B[0], A[1])), (x1, (lifted[0], A[1]))):
+        t = closest_on_polylines(X[None], Y[None])[2][0]
+        i = np.clip(np.floor(t).astype(int), 0, m - 2)
+        ids, ends = layout.vid[:, 1], np.stack([layout.vid[i, 2], layout.vid[i + 1, 2]], -1)
+        phi, _ = seam(x, layout, ids, ends, t - i, np.tile(normal, (m, 1)))
+        step, _ = seam_offsets(X, Y, np.tile(normal, (m, 1)))
+        assert np.abs(phi) == pytest.approx(step, abs=1e-12)
+    assert np.abs(phi).max() > 0.01                              # the lift (less the tilt)

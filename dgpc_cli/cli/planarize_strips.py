@@ -65,8 +65,9 @@ def _outline(net, json_path):
                    "isometric to a surface of revolution with equal strip widths.")
 @click.option("--seam-weight", type=FiniteFloat(min=0), default=SEAM_WEIGHT,
               show_default=True,
-              help="Template fit: weight of the seams (neighbouring strips' boundaries on the "
-                   "same geodesic, no step or gap) against the closeness to the net.")
+              help="Template fit: weight of the seams (each strip's copy of a shared geodesic "
+                   "on its neighbour's, no step along the normal, no gap across) against the "
+                   "closeness to the net; 0 lets the strips follow the net more closely.")
 @click.option("--ruling-fairness", type=FiniteFloat(min=0), default=RULING_FAIRNESS,
               show_default=True,
               help="Template fit: weight of the rulings' smoothness (second differences of the "

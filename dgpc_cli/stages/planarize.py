@@ -263,9 +263,11 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
     surface of revolution) are rebuilt from the first one's development without a fit
     (status ``congruent``). Fits whose template folds (rulings that cross) are refused; the
     ruling fairness is raised tenfold until one keeps them in order (:data:`FAIRNESS_STEPS`).
-    Without such a fit, or when the best one deviates from the net by more than ``margin`` of
-    the width beyond the per-strip strips, returns ``(None, record)``, the record's
-    ``rejected`` saying why.
+    The fits hold the seams with ``seam_weight``; when none of them keeps within ``margin``
+    (below), they are tried again without the seam term (closer to the net, seams that step
+    more) and the closest of all is kept. Without such a fit, or when the best one deviates
+    from the net by more than ``margin`` of the width beyond the per-strip strips, returns
+    ``(None, record)``, the record's ``rejected`` saying why.
     """
     f = np.asarray(f, dtype=float)
     columns = [s.v for s in strips]
@@ -282,33 +284,39 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
         A1, B1 = bend_template(template, A0, B0)
         fit = TemplateFit(A=A1, B=B1, template=template, variant="shared-vertices",
                           status="congruent", iterations=0, R=0.0)
-        best = (0.0, "per-strip", fit, 0.0)
+        best = (0.0, "per-strip", fit, 0.0, 0.0)
         starts = {}
-    for factor in FAIRNESS_STEPS if starts else ():
-        shared = TemplateProblem.build(f, columns, seam_weight=seam_weight,
-                                       ruling_fairness=ruling_fairness * factor,
-                                       max_ruling_turn=max_ruling_turn)
-        problems = {v: shared.with_variant(v) for v in {v for v, _ in TEMPLATE_FITS}}
-        for (variant, name), (A0, B0) in ((k, starts[k[1]]) for k in TEMPLATE_FITS):
-            fit = problems[variant].fit(A0, B0)
-            worst = _worst_deviation(fit.A, fit.B, P, Q)
-            ordered = all(_template_ordered(t) for t in (
-                fit.developments if fit.developments is not None else [fit.template]))
-            tried.append({"variant": fit.variant, "start": name,
-                          "ruling_fairness": ruling_fairness * factor,
-                          "deviation": worst, "rulings_ordered": ordered})
-            log.debug("template fit (%s) from the %s start, ruling fairness %g: largest "
-                      "deviation %.3g of the width, rulings %s", fit.variant, name,
-                      ruling_fairness * factor, worst, "in order" if ordered else "crossing")
-            if ordered and (best is None or worst < best[0]):
-                best = (worst, name, fit, ruling_fairness * factor)
-        if best is not None:
+    # the seam term first; without it only if no fit with it keeps within the margin
+    seams = (seam_weight, 0.0) if seam_weight > 0 else (seam_weight,)
+    for seam in seams if starts else ():
+        if best is not None and best[0] <= per_strip + margin:
             break
+        for factor in FAIRNESS_STEPS:
+            shared = TemplateProblem.build(f, columns, seam_weight=seam,
+                                           ruling_fairness=ruling_fairness * factor,
+                                           max_ruling_turn=max_ruling_turn)
+            problems = {v: shared.with_variant(v) for v in {v for v, _ in TEMPLATE_FITS}}
+            for (variant, name), (A0, B0) in ((k, starts[k[1]]) for k in TEMPLATE_FITS):
+                fit = problems[variant].fit(A0, B0)
+                worst = _worst_deviation(fit.A, fit.B, P, Q)
+                ordered = all(_template_ordered(t) for t in (
+                    fit.developments if fit.developments is not None else [fit.template]))
+                tried.append({"variant": fit.variant, "start": name, "seam_weight": seam,
+                              "ruling_fairness": ruling_fairness * factor,
+                              "deviation": worst, "rulings_ordered": ordered})
+                log.debug("template fit (%s) from the %s start, seam weight %g, ruling "
+                          "fairness %g: largest deviation %.3g of the width, rulings %s",
+                          fit.variant, name, seam, ruling_fairness * factor, worst,
+                          "in order" if ordered else "crossing")
+                if ordered and (best is None or worst < best[0]):
+                    best = (worst, name, fit, ruling_fairness * factor, seam)
+            if any(t["rulings_ordered"] and t["seam_weight"] == seam for t in tried):
+                break
     record = {"per_strip_deviation": per_strip, "tried": tried}
     if best is None:
         return None, {**record, "rejected": "every template fit crossed its rulings (folded "
                       "quads)"}
-    worst, start, fit, fairness = best
+    worst, start, fit, fairness, seam = best
     if worst > per_strip + margin:
         return None, {**record, "rejected": (
             f"the best template deviates from the net by {100 * worst:.2f} % of the strip "
@@ -329,7 +337,8 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
             planarity=float(np.max(planarity_defect(a, b))),
             deviation=deviation(a, b, P[i], Q[i]) / strip.width,
             rulings_ordered=True, cut_edges=None if cuts is None else cuts[i]))
-    record = {"variant": fit.variant, "start": start, "ruling_fairness": fairness,
+    record = {"variant": fit.variant, "start": start, "seam_weight": seam,
+              "ruling_fairness": fairness,
               "max_ruling_turn": max_ruling_turn,
               "status": fit.status, "iterations": fit.iterations,
               "A": from_mm(fit.template[:, 0], units), "B": from_mm(fit.template[:, 1], units),

@@ -12,8 +12,10 @@ place. The fit (:func:`fit_template`) solves, by guided projection, for one flat
   cover the design edge to edge), the template's rigid motions fixed, its quads not folded and
   neighbouring rulings within 20° (:func:`~dgpc_cli.core.constraints.template.ruling_turn`);
 * soft: the strips' quads (3 × 3 samples of each) close to the net (point-to-plane, §5.1),
-  the boundary vertices on their geodesic, and optionally the seams: neighbouring strips'
-  boundaries on the same geodesic;
+  the boundary vertices on their geodesic (across it and along the net's normal), and the
+  seams: every vertex of a strip's copy of a shared geodesic on its neighbour's copy, along the
+  normal and across it (:func:`~dgpc_cli.core.constraints.template.seam`: the seam step and
+  gap that :mod:`~dgpc_cli.strips.fabrication` measures, its feet re-taken every round);
 * regularizers: fairness of the ruling vectors and of the vertices' slides along the geodesics,
   and a proximal term on the slides within a round.
 
@@ -82,10 +84,12 @@ OUTLINE_DEGREE = 6
 OUTLINE_TOL = 1e-3
 #: Weights of the soft terms and regularizers in the first round (the hard terms have weight
 #: 1): closeness of the strips to the net, the boundary vertices' distance across their net
-#: geodesic, their slide along it within a round (a proximal term: sliding is free for the
-#: closeness), the fairness of the slides.
-WEIGHTS = {"closeness": 1e-3, "across": 1e-3, "slide": 1e-5, "slide_fairness": 1e-8,
-           "max_ruling_turn": 20.0}
+#: geodesic and along the net's normal (the common target of both copies of a seam: the
+#: boundaries stay on the surface rather than where the strip's middle would pull them), their
+#: slide along it within a round (a proximal term: sliding is free for the closeness), the
+#: fairness of the slides.
+WEIGHTS = {"closeness": 1e-3, "across": 1e-3, "normal": 1e-2, "slide": 1e-5,
+           "slide_fairness": 1e-8, "max_ruling_turn": 20.0}
 #: The default largest turn between neighbouring rulings, degrees.
 MAX_RULING_TURN = WEIGHTS["max_ruling_turn"]
 #: (``max_ruling_turn``: not a weight, the largest angle in degrees between neighbouring
@@ -97,8 +101,10 @@ ROUND_FACTORS = (1.0, 0.1, 0.01, 1e-3)
 #: The template's boundary steps and quad turns stay above this fraction of their mean (no
 #: folded quad, no crossing rulings).
 ORDER_MARGIN = 0.2
-#: Default weight of the seam term (off: see the README's trade-off table).
-SEAM_WEIGHT = 0.0
+#: Default weight of the seam term (each copy of a shared geodesic on the other, along the
+#: normal and across; lowered over the rounds with the other soft terms): see the README's
+#: trade-off table.
+SEAM_WEIGHT = 2e-2
 #: Tolerance (hard residual at mean edge length 1) and iteration limit of the fit.
 FIT_TOL = 1e-10
 FIT_ROUNDS = 4
@@ -280,8 +286,7 @@ def _frames(P, Q, X, is_b):
     """Closest points on the strips' own geodesics, tangents and across-directions for the
     boundary vertices ``X (S, m, 3)`` (``is_b``: on Q, else on P)."""
     c, t, _ = closest_on_polylines(X, Q if is_b else P)
-    n = unit(np.cross(np.gradient(P, axis=1) + np.gradient(Q, axis=1), Q - P))
-    return c, t, unit(np.cross(n, t))
+    return c, t, unit(np.cross(_row_normals(P, Q), t))
 
 
 def _order_bounds(T: np.ndarray):
@@ -330,19 +335,72 @@ def _soft_terms(x, setup: TemplateProblem, factor: float):
              const(w["ruling_fairness"]), False, True),
         Term("slide_fairness", lambda x: slide_fairness(x, layout, c, t),
              const(w["slide_fairness"]), False, True)]
-    if setup.seam_dirs is not None:
-        terms.append(Term("seam", lambda x: seam(x, layout, setup.seam_dirs),
-                          const(w["seam"]), False))
+    if w["normal"] > 0:
+        normals = grid(*_boundary_normals(setup, A, B)).reshape(-1, 3)
+        terms.append(Term("normal", lambda x: lateral(x, layout, c.reshape(-1, 3), normals),
+                          const(w["normal"]), False))
+    if w["seam"] > 0 and S > 1:
+        frames = _seam_frames(setup, A, B)
+        terms.append(Term("seam", lambda x: seam(x, layout, *frames), const(w["seam"]),
+                          False))
     return terms
+
+
+def _row_normals(P, Q):
+    """Unit normals ``(S, m, 3)`` of the net strips ``P, Q`` at their rows."""
+    return unit(np.cross(np.gradient(P, axis=1) + np.gradient(Q, axis=1), Q - P))
+
+
+def _at_parameters(n, t):
+    """The row vectors ``n (S, m, 3)`` interpolated at the parameters ``t (S, k)`` (row index +
+    fraction), unit."""
+    i = np.clip(np.floor(t).astype(int), 0, n.shape[1] - 2)
+    w = (t - i)[..., None]
+    return unit((1 - w) * np.take_along_axis(n, i[..., None], 1)
+                + w * np.take_along_axis(n, i[..., None] + 1, 1))
+
+
+def _boundary_normals(setup, A, B):
+    """The net's normals at the feet of the boundary vertices ``A, B (S, m, 3)`` on their own
+    geodesics, each ``(S, m, 3)``."""
+    n = _row_normals(setup.P, setup.Q)
+    return [_at_parameters(n, closest_on_polylines(X, G)[2])
+            for X, G in ((A, setup.P), (B, setup.Q))]
+
+
+def _seam_frames(setup, A, B):
+    """The frames of :func:`~dgpc_cli.core.constraints.template.seam` at the strips ``A, B (S,
+    m, 3)``: every vertex of both copies of a shared geodesic (strip s's B, strip s+1's A), the
+    segment of the other copy holding its foot, the fraction there, and twice (a step and a
+    gap) a direction: the net's normal at the foot (the mean of both strips') and the one
+    across the other copy in the tangent plane."""
+    layout = setup.layout
+    n = _row_normals(setup.P, setup.Q)
+    shared = unit(n[:-1] + n[1:])                                          # (S-1, m, 3)
+    on_b, on_a = layout.vid[:, 1:-1:2].T, layout.vid[:, 2::2].T            # (S-1, m)
+    ids, ends, fractions, directions = [], [], [], []
+    for X, Y, own, other in ((B[:-1], A[1:], on_b, on_a), (A[1:], B[:-1], on_a, on_b)):
+        t = closest_on_polylines(X, Y)[2]
+        i = np.clip(np.floor(t).astype(int), 0, layout.m - 2)[..., None]
+        normal = _at_parameters(shared, t)
+        along = np.take_along_axis(Y, i + 1, 1) - np.take_along_axis(Y, i, 1)
+        segment = np.stack([np.take_along_axis(other, i[..., 0], 1),
+                            np.take_along_axis(other, i[..., 0] + 1, 1)], -1).reshape(-1, 2)
+        for d in (normal, unit(np.cross(normal, along))):
+            ids.append(own.ravel())
+            ends.append(segment)
+            fractions.append((t - i[..., 0]).ravel())
+            directions.append(d.reshape(-1, 3))
+    return tuple(np.concatenate(a) for a in (ids, ends, fractions, directions))
 
 
 @dataclass
 class TemplateProblem:
     """What every start of a template fit shares (see :func:`fit_template`): the net strips
     ``P, Q (S, m, 3)`` scaled to mean edge length 1 about ``center`` (``scale``), the layout,
-    the net as a reference surface and the sample points of the closeness, the end v-edges,
-    the seam directions and the weights; the solver's workspace (one pattern for every start
-    and round: one symbolic factorization)."""
+    the net as a reference surface and the sample points of the closeness, the end v-edges
+    and the weights; the solver's workspace (one pattern for every start and round, one
+    symbolic factorization, but for the seam term's feet when they move to another segment)."""
 
     layout: StripSetLayout
     P: np.ndarray
@@ -353,7 +411,6 @@ class TemplateProblem:
     samples: tuple
     end_c: np.ndarray
     end_t: np.ndarray
-    seam_dirs: np.ndarray | None
     weights: dict
     variant: str = "shared-vertices"
     workspace: object = None
@@ -390,7 +447,6 @@ class TemplateProblem:
         problem = cls(layout=layout, P=P, Q=Q, center=center, scale=scale,
                       reference=_net_surface((f - center) * scale, columns),
                       samples=strip_quad_samples(layout), end_c=end_c, end_t=end_t,
-                      seam_dirs=_seam_directions(P, Q) if seam_weight > 0 and S > 1 else None,
                       weights=w)
         return problem if variant == "shared-vertices" else problem.with_variant(variant)
 
@@ -480,13 +536,3 @@ def fit_template(f: np.ndarray, columns: list[int], A0: np.ndarray, B0: np.ndarr
                                     ruling_fairness=ruling_fairness, variant=variant)
     return problem.fit(A0, B0, rounds=rounds)
 
-
-def _seam_directions(P, Q):
-    """Unit directions ``(2, m, S−1, 3)`` across the geodesic shared by strips s and s+1 and
-    along the surface normal there, at the net's vertices."""
-    g = Q[:-1]                                                             # == P[1:]
-    t = unit(np.gradient(g, axis=1))
-    n = unit(np.cross(np.gradient(P, axis=1) + np.gradient(Q, axis=1), Q - P))
-    normal = unit(n[:-1] + n[1:])
-    across = unit(np.cross(normal, t))
-    return np.moveaxis(np.stack([across, normal]), 2, 1)

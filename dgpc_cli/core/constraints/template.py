@@ -19,8 +19,10 @@ Terms of its own (``term(x, layout, ...) -> (phi, J)``, value-independent COO pa
 * template gauge: ``a_0 = (0, 0)``, ``b_0`` on the x-axis (the template's rigid motions);
 * ruling fairness: second differences along u of the ruling vectors ``B_u − A_u`` (rulings
   that turn smoothly: score lines that do not zigzag);
-* seam: ``⟨d, B_(s,u) − A_(s+1,u)⟩`` for the directions d across the shared geodesic and along
-  the surface normal: neighbouring strips' boundaries on the same geodesic (no step, no gap);
+* seam: ``⟨d, X − foot⟩`` of every vertex X of one strip's copy of a shared geodesic from its
+  foot on the neighbour's copy (segment and fraction held for a round), along the net's
+  normal and across in the tangent plane: the seam step and gap of the fabrication metrics,
+  each copy on the other;
 * template order and ruling turn (slack form of inequalities): no folded template quad, and
   neighbouring rulings within an angle;
 * template outline (variant shared outline, one development per strip): every development's
@@ -207,20 +209,23 @@ def ruling_fairness(x, layout: StripSetLayout):
     return phi, jacobian(phi.size, layout.size, *blocks)
 
 
-def seam(x, layout: StripSetLayout, directions):
-    """Residuals ``⟨d, B_(s,u) − A_(s+1,u)⟩`` for every row u and neighbouring pair s, s+1 and
-    both unit ``directions (2, m, S−1, 3)`` (across the shared geodesic, along the normal).
-    Linear; empty for a single strip."""
+def seam(x, layout: StripSetLayout, ids, ends, fractions, directions):
+    """Residuals ``⟨d_k, p_(i_k) − (1 − τ_k) p_(j_k) − τ_k p_(l_k)⟩`` (1 per row) of the
+    vertices ``ids (k,)`` from the points at the ``fractions τ (k,)`` of the segments ``ends (k,
+    2)`` = ``(j, l)`` (a neighbour's copy of the shared geodesic), along the unit ``directions
+    (k, 3)``: with the net's normal the seam step of
+    :func:`~dgpc_cli.strips.fabrication.seam_offsets`, across the segment in the tangent plane
+    its gap, each with its foot (segment and fraction) held. Linear."""
     p, _ = layout.split(x)
-    b, a = layout.vid[:, 1:-1:2], layout.vid[:, 2::2]                      # (m, S-1)
-    d = np.asarray(directions, dtype=float).reshape(2, layout.m, layout.S - 1, 3)
-    phi = np.einsum("kusj,usj->kus", d, p[b] - p[a]).ravel()
+    ids, ends = np.asarray(ids), np.asarray(ends)
+    tau = np.asarray(fractions, dtype=float)[:, None]
+    n = np.asarray(directions, dtype=float).reshape(-1, 3)
+    foot = (1.0 - tau) * p[ends[:, 0]] + tau * p[ends[:, 1]]
+    phi = np.einsum("kj,kj->k", p[ids] - foot, n)
     rows = np.arange(phi.size)[:, None]
-    ids_b = np.broadcast_to(b, d.shape[:3]).ravel()
-    ids_a = np.broadcast_to(a, d.shape[:3]).ravel()
-    dd = d.reshape(-1, 3)
-    return phi, jacobian(phi.size, layout.size,
-                         (rows, layout.f_cols(ids_b), dd), (rows, layout.f_cols(ids_a), -dd))
+    return phi, jacobian(phi.size, layout.size, (rows, layout.f_cols(ids), n),
+                         (rows, layout.f_cols(ends[:, 0]), -(1.0 - tau) * n),
+                         (rows, layout.f_cols(ends[:, 1]), -tau * n))
 
 
 def strip_quad_samples(layout: StripSetLayout, k: int = 3) -> tuple[np.ndarray, np.ndarray]:
