@@ -449,7 +449,8 @@ def flat_metrics(parts: list[dict], classes: list[dict]) -> dict:
         "classes": {c["id"]: {"quantity": c["quantity"], "representative": c["representative"],
                               "members": c["members"],
                               "max_relative_error": c["max_relative_error"],
-                              "max_deviation_mm": c.get("max_deviation_mm", 0.0)}
+                              "max_deviation_mm": c.get("max_deviation_mm", 0.0),
+                              "score_lines": c.get("score_lines", "shared")}
                     for c in classes},
         "per_part": {p["id"]: {"strain": p["strain"], "straightness": p["straightness"],
                                "length": p["length"], "class": p["class"],
