@@ -163,3 +163,32 @@ def test_copies_with_the_same_score_lines_keep_one_dxf(tmp_path):
     (row,) = rows.values()
     assert (row["quantity"], row["score_lines"], row["dxf"]) == ("3", "shared", "flat.C01.dxf")
     assert flat.classes[0]["score_deviation_mm"] <= 1e-6
+
+
+def test_score_lines_coincide_within_the_congruence_tolerance_only():
+    """A class's copies share their score lines when each copy's, aligned onto the template,
+    lies within the tolerance of the template's: a ruling moved 0.3 mm along the part is
+    shared at 0.5 mm, one moved 0.6 mm (or missing) is not."""
+    from dgpc_cli.stages.unfold import with_score_lines
+
+    def part(pid, shift, rulings=2):
+        score = [np.array([[100.0 * (k + 1) + shift, 0.0], [100.0 * (k + 1), 50.0]])
+                 for k in range(rulings)]
+        return {"id": pid, "score": score,
+                "alignment": {"matrix": np.eye(2), "translation": np.zeros(2)}}
+
+    cls = {"id": "C01", "representative": "S-v00", "quantity": 2, "members": ["S-v00", "S-v01"]}
+    for copy, want in ((part("S-v01", 0.3), "shared"), (part("S-v01", 0.6), "per copy"),
+                       (part("S-v01", 0.0, rulings=1), "per copy")):
+        (got,) = with_score_lines([part("S-v00", 0.0), copy], [cls], 0.5)
+        assert got["score_lines"] == want
+    # the copy's alignment is applied: the template's slanted rulings turned by 180° about
+    # (150, 25) are the same score lines, not (unaligned, they lie 20 mm from the template's)
+    slanted = part("S-v00", 20.0)
+    turned = {**part("S-v01", 0.0), "score": [[300.0, 50.0] - x for x in slanted["score"]],
+              "alignment": {"matrix": -np.eye(2), "translation": np.array([300.0, 50.0])}}
+    (got,) = with_score_lines([slanted, turned], [cls], 0.5)
+    assert got["score_lines"] == "shared" and got["score_deviation_mm"] <= 1e-9
+    unaligned = {**turned, "alignment": part("S-v01", 0.0)["alignment"]}
+    (got,) = with_score_lines([slanted, unaligned], [cls], 0.5)
+    assert got["score_lines"] == "per copy" and got["score_deviation_mm"] >= 19.0

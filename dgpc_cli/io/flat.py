@@ -27,9 +27,10 @@ the artifact's unit ``data.units`` (the net's):
 and the largest member error (``max_error`` in the artifact's unit, ``max_deviation_mm`` in
 mm; each part's own in its ``alignment.deviation_mm``); ``score_lines``: ``shared`` when every
 copy's score lines, aligned, lie within the congruence tolerance of the representative's, else
-``per copy``, and ``score_deviation_mm`` the largest such distance (mm). ``data.joints`` lists where boards
-meet: ``strip``, net ``row``, ``position`` (arc length along the strip) and the two ``parts``;
-for boards of one template also the ``cut`` (as a part's ``cuts``), ``row`` the nearest ruling.
+``per copy``, and ``score_deviation_mm`` the largest such distance (mm). ``data.joints``
+lists where boards meet: ``strip``, net ``row``, ``position`` (arc length along the strip) and
+the two ``parts``; for boards of one template also the ``cut`` (as a part's ``cuts``), ``row``
+the nearest ruling.
 The OBJ holds the same parts (z = 0) as one object each, for viewers. Beside it, all listed in
 ``data.files``:
 
