@@ -38,4 +38,4 @@ $(WALL)/report-index.html: $(WALL)/wall.json $(WALL)/strips.json $(WALL)/flat.js
 pipeline-timber-cladding: setup $(WALL)/sheets.json $(WALL)/report-index.html ## Timber cladding: congruent strips, DXF cut sheets (Fig. 2, 18).
 	@echo "timber-cladding: figures $(WALL)/report-index.html"
 	@echo "timber-cladding: $$(ls $(WALL)/sheets.sheet*.dxf | tr '\n' ' ')"
-	@echo "timber-cladding: cut list $(WALL)/flat.parts.csv: $$(awk -F, 'NR > 1 {printf "%s%s x%s (%s)", (NR > 2 ? ", " : ""), $$1, $$2, $$NF}' $(WALL)/flat.parts.csv)"
+	@echo "timber-cladding: cut list $(WALL)/flat.parts.csv: $$(awk -F, 'NR > 1 {printf "%s%s x%s (score lines %s: %s)", (NR > 2 ? ", " : ""), $$1, $$2, $$(NF - 1), $$NF}' $(WALL)/flat.parts.csv)"

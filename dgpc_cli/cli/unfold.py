@@ -75,7 +75,10 @@ def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, 
     artifact -o STEM2, its cut list STEM2.parts.csv (one line per template: quantity and the
     copies' ids, mm), STEM2.assembly.csv (one line per part: where it goes) and per template
     STEM2.C01.dxf, ... (the part alone, mm, layers as on nest's cut sheets, labelled with the
-    class, its quantity and its copies' ids in --label-style).
+    class, its quantity and its copies' ids in --label-style); where the copies of a template
+    share its outline but not its score lines (a shared-outline template: each strip its own
+    rulings), one DXF per copy instead, STEM2.C01.S-v03.dxf, ... (the outline, the copy's own
+    score lines), and the cut list says "per copy" in its score_lines column.
     """
     if stagger is not None and stock_length is None:
         raise click.UsageError("--stagger goes with --stock-length")

@@ -25,9 +25,12 @@ the artifact's unit ``data.units`` (the net's):
 ``data.classes`` lists the congruence classes (the cutting templates): ``id``,
 ``representative`` (a part id: the template), ``quantity``, ``members`` (part ids: its copies)
 and the largest member error (``max_error`` in the artifact's unit, ``max_deviation_mm`` in
-mm; each part's own in its ``alignment.deviation_mm``). ``data.joints`` lists where boards
-meet: ``strip``, net ``row``, ``position`` (arc length along the strip) and the two ``parts``;
-for boards of one template also the ``cut`` (as a part's ``cuts``), ``row`` the nearest ruling.
+mm; each part's own in its ``alignment.deviation_mm``); ``score_lines``: ``shared`` when every
+copy's score lines, aligned, lie within the congruence tolerance of the representative's, else
+``per copy``, and ``score_deviation_mm`` the largest such distance (mm). ``data.joints``
+lists where boards meet: ``strip``, net ``row``, ``position`` (arc length along the strip) and
+the two ``parts``; for boards of one template also the ``cut`` (as a part's ``cuts``), ``row``
+the nearest ruling.
 The OBJ holds the same parts (z = 0) as one object each, for viewers. Beside it, all listed in
 ``data.files``:
 
@@ -36,7 +39,10 @@ The OBJ holds the same parts (z = 0) as one object each, for viewers. Beside it,
 * ``STEM.assembly.csv`` (``assembly_csv``): one line per part, where it goes (strip, board,
   rows, arc-length positions: the joints) and its class, in mm (:data:`ASSEMBLY_COLUMNS`);
 * ``STEM.C01.dxf``, ... (``template_C01_dxf``, ...): each template alone, in mm, on the cut
-  sheets' layers, for shops that nest the parts themselves.
+  sheets' layers, for shops that nest the parts themselves; for a class whose copies have
+  their own score lines (``score_lines`` ``per copy``) one file per copy instead,
+  ``STEM.C01.S-v03.dxf`` (``template_C01_S-v03_dxf``): the same outline, the copy's score
+  lines.
 """
 
 from __future__ import annotations
@@ -75,9 +81,10 @@ PART_COLUMNS = ("id", "class", "strip", "board", "row_start", "row_stop", "start
 
 #: Columns of the cut list FLAT.parts.csv: one line per template (congruence class), its
 #: copies' ids separated by spaces, the representative's sizes and the class's largest
-#: deviation (mm), its DXF file.
+#: deviation (mm), whether its copies share their score lines (``shared``, ``per copy``) and
+#: its DXF files (one, or one per copy in the order of ``parts``), separated by spaces.
 CLASS_COLUMNS = ("class", "quantity", "parts", "representative", "length_mm", "width_min_mm",
-                 "width_max_mm", "area_mm2", "max_deviation_mm", "dxf")
+                 "width_max_mm", "area_mm2", "max_deviation_mm", "score_lines", "dxf")
 #: Columns of FLAT.assembly.csv: a part's columns and its deviation from its template (mm).
 ASSEMBLY_COLUMNS = (*PART_COLUMNS, "deviation_mm")
 
@@ -116,10 +123,10 @@ def csv_bytes(columns: tuple, rows: list[dict]) -> bytes:
     return out.getvalue().encode("utf-8")
 
 
-def parts_csv(parts: list[dict], classes: list[dict], units: str, dxf_names: dict[str, str]
-              ) -> bytes:
+def parts_csv(parts: list[dict], classes: list[dict], units: str,
+              dxf_names: dict[str, list[str]]) -> bytes:
     """FLAT.parts.csv: the cut list, one line per class (in class order), mm; ``dxf_names``
-    the file name of each class's template DXF."""
+    the file names of each class's DXFs (its template's, or one per copy)."""
     mm = mm_per_unit(units)
     by_id = {p["id"]: p for p in parts}
     rows = []
@@ -129,7 +136,8 @@ def parts_csv(parts: list[dict], classes: list[dict], units: str, dxf_names: dic
                      "representative": c["representative"],
                      **{k: rep[k] for k in CLASS_COLUMNS[4:8]},
                      "max_deviation_mm": f"{class_deviation_mm(c, mm):.3f}",
-                     "dxf": dxf_names.get(c["id"], "")})
+                     "score_lines": c.get("score_lines", "shared"),
+                     "dxf": " ".join(dxf_names.get(c["id"], []))})
     return csv_bytes(CLASS_COLUMNS, rows)
 
 
@@ -191,10 +199,10 @@ def csv_path(stem: str | Path, name: str = "parts") -> Path:
     return json_path.with_suffix(f".{name}.csv")
 
 
-def template_path(stem: str | Path, class_id: str) -> Path:
-    """``STEM.C01.dxf``: the template DXF of class ``class_id``."""
+def template_path(stem: str | Path, name: str) -> Path:
+    """``STEM.C01.dxf``: the template DXF ``name`` (a class id, or ``C01.S-v03`` a copy's)."""
     json_path, _ = artifact_paths(stem)
-    return json_path.with_suffix(f".{class_id}.dxf")
+    return json_path.with_suffix(f".{name}.dxf")
 
 
 def flat_files(stem: str | Path, art: FlatArtifact) -> dict[Path, bytes]:
@@ -202,13 +210,15 @@ def flat_files(stem: str | Path, art: FlatArtifact) -> dict[Path, bytes]:
     ``STEM.assembly.csv`` and the template DXFs (nothing written), schema-checked."""
     json_path, _ = artifact_paths(stem)
     folder = json_path.resolve().parent
-    table = parts_csv(art.parts, art.classes, art.units,
-                      {cid: template_path(stem, cid).name for cid in art.templates})
+    names: dict[str, list[str]] = {}
+    for name in art.templates:                      # in class order, copies in member order
+        names.setdefault(name.split(".")[0], []).append(template_path(stem, name).name)
+    table = parts_csv(art.parts, art.classes, art.units, names)
     assembly = assembly_csv(art.parts, art.units)
     listed = {"parts_csv": (csv_path(stem), table),
               "assembly_csv": (csv_path(stem, "assembly"), assembly),
-              **{f"template_{cid}_dxf": (template_path(stem, cid), data)
-                 for cid, data in sorted(art.templates.items())}}
+              **{f"template_{name.replace('.', '_')}_dxf": (template_path(stem, name), data)
+                 for name, data in sorted(art.templates.items())}}
     data = {"units": art.units, "parts": art.parts, "classes": art.classes,
             "joints": art.joints,
             "files": {key: relative_input(path, folder, b) for key, (path, b) in listed.items()}}

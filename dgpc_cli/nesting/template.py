@@ -10,6 +10,13 @@ two score lines; :func:`cell_runs`, the first run the class's), placed there as 
 a part's id
 (:func:`~dgpc_cli.nesting.labels.place_labels`: inside the part clear of every cut and score
 line, else its short form, else beside the part with a leader).
+
+A class whose copies do not share their score lines (the strips of a shared-outline template,
+each bent along its own rulings) gets one drawing per copy instead (:func:`copy_drawing`:
+``FLAT.C01.S-v03.dxf``): the same outline in the same place in every copy's file, the copy's
+own score lines, labelled with the copy's id and ``C01 copy 3 of 12``. One file with every
+copy's score lines on layers of their own would be scored whole on every copy by a CAM that
+takes all layers.
 """
 
 from __future__ import annotations
@@ -57,17 +64,55 @@ def cell_runs(A: np.ndarray, B: np.ndarray, k: int) -> list[tuple[int, int]]:
     return [(a, b) for a, b in zip(cuts, ends, strict=True)]
 
 
+def copy_texts(cls: dict, part_id: str, cells: int) -> list[str]:
+    """The label lines of the drawing of one copy ``part_id`` of class ``cls`` (whose copies
+    have their own score lines) on a part of ``cells`` cells: the copy's id, as on a sheet,
+    then ``C01 copy 3 of 12`` (one line on a part of one cell)."""
+    k = list(cls["members"]).index(part_id) + 1
+    lines = [part_id, f"{cls['id']} copy {k} of {cls['quantity']}"]
+    return lines if cells > 1 else [" ".join(lines)]
+
+
 def template_drawing(part: dict, cls: dict, label_style: str = "text") -> Drawing:
     """The template drawing of ``part`` (a flat part record in mm: ``outline``, ``score``,
     ``label``, ``geodesics``), the representative of class ``cls``, labelled in
-    ``label_style`` (``text`` or ``stroke``); see the module."""
+    ``label_style`` (``text`` or ``stroke``) with the class, its quantity and its copies' ids;
+    see the module."""
     outline = np.asarray(part["outline"], float)
+    cells = len(part["geodesics"][0]) - 1
+    return _drawing(part, outline.min(axis=0), template_texts(cls, cells), label_style)
+
+
+def copy_drawing(part: dict, rep: dict, cls: dict, label_style: str = "text") -> Drawing:
+    """The drawing of one copy ``part`` of class ``cls`` whose representative is ``rep`` (flat
+    part records in mm), for a class whose copies do not share their score lines: the copy's
+    own outline and score lines carried onto the representative by its ``alignment`` (the
+    motion unfold found for the class), in the representative's drawing's frame, so every
+    copy's file has the same cut outline and its own score lines; labelled with its id and
+    class (:func:`copy_texts`)."""
+    R = np.asarray(part["alignment"]["matrix"], float)
+    t = np.asarray(part["alignment"]["translation"], float)
+
+    def move(x):
+        return np.asarray(x, float) @ R.T + t
+
+    outline = move(part["outline"])
+    moved = {"outline": outline[::-1] if np.linalg.det(R) < 0 else outline,
+             "score": [move(s) for s in part["score"]], "label": move(part["label"]),
+             "geodesics": [move(g) for g in part["geodesics"]]}
+    low = np.asarray(rep["outline"], float).min(axis=0)
+    texts = copy_texts(cls, part["id"], len(part["geodesics"][0]) - 1)
+    return _drawing(moved, low, texts, label_style)
+
+
+def _drawing(part: dict, low: np.ndarray, texts: list[str], label_style: str) -> Drawing:
+    """One part (``outline``, ``score``, ``label``, ``geodesics`` in mm) drawn with ``low`` at
+    the origin, the label lines ``texts`` each in its own run of cells."""
     room = ROOM * MIN_TEXT_MM
-    shift = room - outline.min(axis=0)               # labelled on a sheet with room around
-    outline = outline + shift
+    shift = room - np.asarray(low, float)            # labelled on a sheet with room around
+    outline = np.asarray(part["outline"], float) + shift
     score = [np.asarray(s, float) + shift for s in part["score"]]
     A, B = (np.asarray(g, float) + shift for g in part["geodesics"])
-    texts = template_texts(cls, len(A) - 1)
     pieces = [{"id": text, "outline": outline, "score": score,
                "label": np.asarray(part["label"], float) + shift,
                "geodesics": (A[a:b + 1], B[a:b + 1])}

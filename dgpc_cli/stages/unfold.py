@@ -18,12 +18,13 @@ from shapely.geometry import LineString, Polygon
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.units import from_mm, mm_per_unit
-from dgpc_cli.nesting.template import template_drawing
+from dgpc_cli.nesting.template import copy_drawing, template_drawing
 from dgpc_cli.strips.boards import Board, cumulative, split_boards
 from dgpc_cli.strips.congruence import Alignment, congruence_classes, kabsch, outline_points
 from dgpc_cli.strips.cut_edges import edges_between
 from dgpc_cli.strips.develop import Development, develop_strip, signed_area
 from dgpc_cli.strips.pinch import PINCH
+from dgpc_cli.strips.score_lines import aligned, score_distance
 from dgpc_cli.strips.template_boards import board_geometry, cut_params, cut_path, template_patterns
 from dgpc_cli.strips.trim import developed_part
 from dgpc_cli.strips.trimmed_boards import board_ring, split_trimmed
@@ -90,7 +91,8 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
     """Develop every strip ``(A, B)`` of ``geometry`` (mm), cut it into boards no longer than
     ``stock_length`` (mm; None: whole strips) with joints ``stagger`` apart (default a quarter
     of the stock, kept where the rulings allow, with a warning where they do not), and
-    classify the parts within ``congruence_tol`` (mm).
+    classify the parts within ``congruence_tol`` (mm); every class then says whether its
+    copies share the template's score lines (:func:`with_score_lines`).
 
     Returns the part records, class records and joint records of the flat artifact (see
     :mod:`dgpc_cli.io.flat`), in mm. DgpcError (naming ``source``) when a developed outline
@@ -105,6 +107,33 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
     stock length every strip is then cut at the same lines of the template, in two alternating
     joint patterns (:func:`template_boards`).
     """
+    parts, classes, joints = _unfold_parts(geometry, ids, columns, congruence_tol, mirror_ok,
+                                           stock_length, stagger, source, trims, cut_edges,
+                                           template)
+    return parts, with_score_lines(parts, classes, congruence_tol), joints
+
+
+def with_score_lines(parts: list[dict], classes: list[dict], tol: float) -> list[dict]:
+    """The class records with ``score_lines``: ``shared`` when every copy's score lines,
+    carried onto the representative by the copy's alignment, lie within ``tol`` (mm) of the
+    representative's (:func:`~dgpc_cli.strips.score_lines.score_distance`), else ``per copy``
+    (a shared-outline template: each strip its own rulings); and ``score_deviation_mm``, the
+    largest such distance (``parts`` in mm)."""
+    by_id = {p["id"]: p for p in parts}
+    out = []
+    for c in classes:
+        rep = by_id[c["representative"]]["score"]
+        far = max(score_distance(aligned(by_id[m]["score"], by_id[m]["alignment"]["matrix"],
+                                         by_id[m]["alignment"]["translation"]), rep)
+                  for m in c["members"])
+        out.append({**c, "score_lines": "shared" if far <= tol else "per copy",
+                    "score_deviation_mm": far if np.isfinite(far) else None})
+    return out
+
+
+def _unfold_parts(geometry, ids, columns, congruence_tol, mirror_ok, stock_length, stagger,
+                  source, trims, cut_edges, template):
+    """:func:`unfold_strips` before the score lines are compared."""
     cut_edges = cut_edges or [None] * len(geometry)
     devs = [with_cut_edges(develop_strip(A, B), cut, 0, len(A) - 1)
             for (A, B), cut in zip(geometry, cut_edges, strict=True)]
@@ -276,12 +305,24 @@ def scale_warnings(parts: list[dict], geometry: list, units: str, stock_length) 
 
 def template_dxfs(parts: list[dict], classes: list[dict], label_style: str = "text"
                   ) -> dict[str, bytes]:
-    """Class id -> the DXF bytes of its template (:mod:`dgpc_cli.nesting.template`): the
-    representative of every class, from the records of :func:`unfold_strips` (mm), labelled
-    with the class, its quantity and its copies' ids in ``label_style``."""
+    """The template DXFs (:mod:`dgpc_cli.nesting.template`) from the records of
+    :func:`unfold_strips` (mm), labelled in ``label_style``, by name: ``C01`` the
+    representative of a class whose copies share their score lines, labelled with the class,
+    its quantity and its copies' ids; ``C01.S-v03`` one copy of a class whose copies each have
+    their own score lines (``score_lines`` ``per copy``), one per copy in the order of its
+    members, each on the representative's outline with the copy's own score lines."""
     by_id = {p["id"]: p for p in parts}
-    return {c["id"]: template_drawing(by_id[c["representative"]], c, label_style).to_bytes(
-        f"template {c['id']}") for c in classes}
+    out = {}
+    for c in classes:
+        rep = by_id[c["representative"]]
+        if c.get("score_lines") != "per copy":
+            out[c["id"]] = template_drawing(rep, c, label_style).to_bytes(
+                f"template {c['id']}")
+            continue
+        for m in c["members"]:
+            out[f"{c['id']}.{m}"] = copy_drawing(by_id[m], rep, c, label_style).to_bytes(
+                f"template {c['id']}, copy {m}")
+    return out
 
 
 def records_in_units(parts: list[dict], classes: list[dict], joints: list[dict], units: str
@@ -408,7 +449,8 @@ def flat_metrics(parts: list[dict], classes: list[dict]) -> dict:
         "classes": {c["id"]: {"quantity": c["quantity"], "representative": c["representative"],
                               "members": c["members"],
                               "max_relative_error": c["max_relative_error"],
-                              "max_deviation_mm": c.get("max_deviation_mm", 0.0)}
+                              "max_deviation_mm": c.get("max_deviation_mm", 0.0),
+                              "score_lines": c.get("score_lines", "shared")}
                     for c in classes},
         "per_part": {p["id"]: {"strain": p["strain"], "straightness": p["straightness"],
                                "length": p["length"], "class": p["class"],
