@@ -279,10 +279,11 @@ def _strips_page(json_path: Path) -> Page:
     # seen from where the net's figures are seen: its axis up, from the outside of the strips
     up = _input_up(art.inputs, json_path)
     front = outward_front(np.concatenate([grid_quads(g) for g in grids]), up)
-    figs = [("width", "The planar-quad strips, each quad coloured by the strip width.",
+    figs = [("width", "The planar-quad strips, each quad coloured by the mean length of its "
+             "two rulings (the score lines; slanted rulings are longer than the strip is wide).",
              lambda: field_figure(grids, [width_per_quad(g) for g in grids],
                                   title=f"{len(grids)} planar-quad strips",
-                                  label=f"strip width [{art.units}]", unit=art.units,
+                                  label=f"ruling length [{art.units}]", unit=art.units,
                                   up=up, front=front))]
     figs += _fabrication_figures(art, json_path)
     header = Header(f"{len(grids)} geodesic strips made of planar quads "

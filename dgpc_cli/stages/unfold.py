@@ -107,10 +107,24 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
     stock length every strip is then cut at the same lines of the template, in two alternating
     joint patterns (:func:`template_boards`).
     """
+    check_stock(geometry, stock_length)
     parts, classes, joints = _unfold_parts(geometry, ids, columns, congruence_tol, mirror_ok,
                                            stock_length, stagger, source, trims, cut_edges,
                                            template)
     return parts, with_score_lines(parts, classes, congruence_tol), joints
+
+
+def check_stock(geometry: list, stock_length: float | None) -> None:
+    """Refuse a ``stock_length`` (mm) shorter than the strips ``geometry`` (mm) are wide: its
+    boards would be wider than long, thousands of them (a unit slip, ``2.5mm`` for 2.5 m)."""
+    if stock_length is None or not stock_length > 0:
+        return
+    widest = max(float(np.linalg.norm(np.asarray(B, float) - np.asarray(A, float),
+                                      axis=-1).max()) for A, B in geometry)
+    if stock_length < widest:
+        raise DgpcError(f"{stock_length:g} mm is shorter than the strips are wide (up to "
+                        f"{widest:.0f} mm): every board would be wider than long; check its "
+                        "unit (2.5m, 2500mm)", source="--stock-length")
 
 
 def with_score_lines(parts: list[dict], classes: list[dict], tol: float) -> list[dict]:
