@@ -23,11 +23,16 @@ END_GAP_WARN = 1.0
 #: ... or when the strips' area differs from the net's (or the outline's) by more than this
 #: share (the parts add up to the design's area within 0.1 %).
 AREA_WARN = 1e-3
+#: ... or when a strip deviates from its net strip by more than this share of the mean strip
+#: width (≤ 1.5 %), or a seam steps by more than this share (≤ 1 %).
+DEVIATION_WARN = 0.015
+SEAM_STEP_WARN = 0.01
 
 
 def fabrication_warnings(fab: dict) -> list[str]:
     """One line per way the strips of ``metrics.fabrication`` fail to build the design: end
-    gaps above :data:`END_GAP_WARN`, an area off by more than :data:`AREA_WARN`."""
+    gaps above :data:`END_GAP_WARN`, a deviation or seam step beyond :data:`DEVIATION_WARN` or
+    :data:`SEAM_STEP_WARN` of the mean width, an area off by more than :data:`AREA_WARN`."""
     out = []
     gap, ratio = fab["max_end_gap"], fab["area_ratio"]
     if gap is not None and gap == gap and gap > END_GAP_WARN:
@@ -36,6 +41,13 @@ def fabrication_warnings(fab: dict) -> list[str]:
             (abs(g) for g in fab["per_strip"][i]["end_gaps"] if g is not None), default=-1.0))
         out.append(f"strips end up to {gap:.4g} mm from the net's edge rows ({worst}): built "
                    "as cut, the design has gaps along its edges")
+    for key, limit, what in (("deviation", DEVIATION_WARN, "deviate from the net"),
+                             ("seam_step", SEAM_STEP_WARN, "step at their seams")):
+        worst = fab.get(f"max_{key}_relative")
+        if worst is not None and worst == worst and worst > limit:
+            out.append(f"the strips {what} by up to {fab[f'max_{key}']:.3g} mm "
+                       f"({100 * worst:.2f} % of the mean strip width, target "
+                       f"{100 * limit:g} %)")
     if ratio is not None and abs(ratio - 1.0) > AREA_WARN:
         out.append(f"the strips' area is {100 * ratio:.2f} % of the {fab['area_reference']}'s "
                    f"({fab['area']:.4g} of {fab['reference_area']:.4g} m²)")
