@@ -17,7 +17,6 @@ from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.strips import strip_id
 from dgpc_cli.strips.cut_edges import template_cut_edges
 from dgpc_cli.strips.develop import develop_strip
-from dgpc_cli.strips.fabrication import ruling_angles
 from dgpc_cli.strips.pinch import PINCH, row_widths, unpinched, widest_section
 from dgpc_cli.strips.polish import polish_strip
 from dgpc_cli.strips.quality import deviation, planarity_defect, strip_width
@@ -61,11 +60,8 @@ FAIRNESS_STEPS = (1.0, 10.0, 100.0)
 TEMPLATE_FITS = (("shared-outline", "per-strip"), ("shared-outline", "net"),
                  ("shared-vertices", "net"))
 #: A template whose largest deviation from the net exceeds the per-strip strips' by more than
-#: this share of the width is not used (the strips stay on their own, with a warning), unless
-#: the per-strip strips break the ruling bound themselves (then they are no alternative).
+#: this share of the width is not used (the strips stay on their own, with a warning).
 TEMPLATE_MARGIN = 0.01
-#: Round-off allowed on the ruling bound when judging the per-strip strips against it (degrees).
-TURN_SLACK = 1e-6
 #: ``--trim`` drops parts shorter than this many quads along the strip.
 MIN_PART_QUADS = 1.0
 
@@ -270,10 +266,8 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
     The fits hold the seams with ``seam_weight``; when none of them keeps within ``margin``
     (below), they are tried again without the seam term (closer to the net, seams that step
     more) and the closest of all is kept. Without such a fit, or when the best one deviates
-    from the net by more than ``margin`` of the width beyond the per-strip strips while those
-    keep the ruling bound themselves, returns ``(None, record)``, the record's ``rejected``
-    saying why (per-strip strips whose rulings turn beyond ``max_ruling_turn`` are no
-    alternative: the template is kept, with a warning).
+    from the net by more than ``margin`` of the width beyond the per-strip strips, returns
+    ``(None, record)``, the record's ``rejected`` saying why.
     """
     f = np.asarray(f, dtype=float)
     columns = [s.v for s in strips]
@@ -282,10 +276,6 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
     starts = {"per-strip": (np.stack([s.A for s in strips]), np.stack([s.B for s in strips])),
               "net": (P, Q)}
     per_strip = _worst_deviation(*starts["per-strip"], P, Q)
-    # strips on their own are the alternative only where their rulings keep the bound too
-    per_strip_turn = max(float(ruling_angles(s.A, s.B).max(initial=0.0)) for s in strips)
-    limit = (per_strip + margin if per_strip_turn <= max_ruling_turn + TURN_SLACK
-             else np.inf)
     best, tried = None, []
     if _congruent(*starts["per-strip"], min(s.width for s in strips)):
         # a surface of revolution: the per-strip strips are one template already
@@ -299,7 +289,7 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
     # the seam term first; without it only if no fit with it keeps within the margin
     seams = (seam_weight, 0.0) if seam_weight > 0 else (seam_weight,)
     for seam in seams if starts else ():
-        if best is not None and best[0] <= limit:
+        if best is not None and best[0] <= per_strip + margin:
             break
         for factor in FAIRNESS_STEPS:
             shared = TemplateProblem.build(f, columns, seam_weight=seam,
@@ -322,22 +312,16 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
                     best = (worst, name, fit, ruling_fairness * factor, seam)
             if any(t["rulings_ordered"] and t["seam_weight"] == seam for t in tried):
                 break
-    record = {"per_strip_deviation": per_strip, "per_strip_ruling_turn": per_strip_turn,
-              "tried": tried}
+    record = {"per_strip_deviation": per_strip, "tried": tried}
     if best is None:
         return None, {**record, "rejected": "every template fit crossed its rulings (folded "
                       "quads)"}
     worst, start, fit, fairness, seam = best
-    if worst > limit:
+    if worst > per_strip + margin:
         return None, {**record, "rejected": (
             f"the best template deviates from the net by {100 * worst:.2f} % of the strip "
             f"width, the strips on their own by {100 * per_strip:.2f} % (more than "
             f"{100 * margin:g} % apart)")}
-    if worst > per_strip + margin:
-        log.warning("planarize-strips: the template deviates from the net by %.2f %% of the "
-                    "strip width, the strips on their own by %.2f %%, but their neighbouring "
-                    "rulings turn by up to %.0f° (bound %g°): the template is kept",
-                    100 * worst, 100 * per_strip, per_strip_turn, max_ruling_turn)
     _, _, sA = closest_on_polylines(fit.A, P)
     _, _, sB = closest_on_polylines(fit.B, Q)
     cuts = (None if fit.outline is None or fit.developments is None else
