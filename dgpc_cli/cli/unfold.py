@@ -15,6 +15,7 @@ from dgpc_cli.cli.options import (
     label_style_opt,
     output_opt,
 )
+from dgpc_cli.cli.patch_set_members import on_members
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.flat import FlatArtifact, csv_path, flat_files
@@ -59,7 +60,8 @@ log = logging.getLogger(__name__)
 @output_opt
 @force_opt
 @format_opt
-def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, output, force,
+@click.pass_context
+def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, output, force,
            fmt):
     """Develop the planar-quad strips of the strips artifact STEM into the plane (paper §6.2.4).
 
@@ -75,8 +77,12 @@ def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, 
     artifact -o STEM2, its cut list STEM2.parts.csv (one line per template: quantity and the
     copies' ids, mm), STEM2.assembly.csv (one line per part: where it goes) and per template
     STEM2.C01.dxf, ... (the part alone, mm, layers as on nest's cut sheets, labelled with the
-    class, its quantity and its copies' ids in --label-style).
+    class, its quantity and its copies' ids in --label-style). A patch set of strips is
+    unfolded member by member (-o STEM2.pK, and STEM2 the set of them).
     """
+    if on_members(ctx, stem, output, force, "unfold",
+                  extra=lambda out: (csv_path(out), csv_path(out, "assembly"))):
+        return
     if stagger is not None and stock_length is None:
         raise click.UsageError("--stagger goes with --stock-length")
     json_path, _ = artifact_paths(stem)
