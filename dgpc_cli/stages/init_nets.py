@@ -65,7 +65,7 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
                         say=say)
         net, mesh = made.net, made.mesh
         switched = patches is None and made.poor is not None and _search_chooses(
-            method, base, direction, angle, extend)
+            method, base, direction, angle, extend, rows, cols, spacing)
         if switched:
             patches = "auto"
             if say is not None:
@@ -113,12 +113,12 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
     return [json_path]
 
 
-def _search_chooses(method: str, base, direction, angle, extend) -> bool:
-    """Whether ``init`` chose the base curve and overhang itself (``--method geodesic`` without
-    ``--base``, ``--direction``, ``--angle`` or ``--extend``), so that it may also choose
-    patches where one net is poor: explicit options win."""
-    return (method == "geodesic" and base in (None, "auto") and direction is None
-            and angle is None and extend is None)
+def _search_chooses(method: str, base, direction, angle, extend, rows, cols, spacing) -> bool:
+    """Whether ``init`` chose the net itself (``--method geodesic`` without ``--base``,
+    ``--direction``, ``--angle``, ``--extend``, ``--rows``, ``--cols`` or ``--edge-length``), so
+    that it may also choose patches where one net is poor: explicit options win."""
+    return (method == "geodesic" and base in (None, "auto")
+            and all(x is None for x in (direction, angle, extend, rows, cols, spacing)))
 
 
 def _patch_mesh(json_path: Path) -> Path:
