@@ -56,6 +56,9 @@ def test_a_stage_runs_on_every_member(lobes, tmp_path):
     shown = json.loads(dgpc("inspect", tmp_path / "b").stdout)
     assert set(shown["members"]) == {"p1", "p2"}
     assert all(m["kind"] == "net" and "R" in m for m in shown["members"].values())
+    written = dgpc("report", tmp_path / "b", "-o", tmp_path / "r").stdout.split()
+    assert written[-1].endswith("r-index.html")
+    assert all(any(f"r-b.p{k}-" in p for p in written) for k in (1, 2))
     # members that do not converge: the set is written, the exit code is theirs (3)
     r = dgpc("optimize", tmp_path / "a", "--mode", "fit", "--max-iter", 1, "-o",
              tmp_path / "c", expect=3)
