@@ -249,7 +249,8 @@ def test_existing_patch_nets_are_kept_without_force(meshes, tmp_path):
     (tmp_path / "a.p1.json").unlink()
     before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
     r = dgpc("init", lobes, *ALONG, "--patches", 2, "--extend", 0, "-o", tmp_path / "a", expect=1)
-    assert "already exists; use --force" in r.stderr and "a.p1" in r.stderr
+    # the patch set a.json, checked first
+    assert "already exists; use --force" in r.stderr and "a.json" in r.stderr
     assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
     dgpc("init", lobes, *ALONG, "--patches", 2, "--extend", 0, "-o", tmp_path / "a", "--force")
     assert (tmp_path / "a.p1.json").is_file()
