@@ -92,7 +92,8 @@ def test_patches_2_writes_one_net_per_lobe(meshes, tmp_path):
     d, lobes, _ = meshes
     r = dgpc("init", lobes, *ALONG, "--patches", 2, "-o", tmp_path / "a")
     paths = r.stdout.split()
-    assert [p.split("/")[-1] for p in paths] == ["a.p1.json", "a.p2.json"]
+    assert [p.split("/")[-1] for p in paths] == ["a.p1.json", "a.p2.json", "a.json"]
+    paths = paths[:-1]                            # the nets; a.json is their patch set
     whole = load_mesh(lobes)
     total = 0.0
     for k, path in enumerate(paths, start=1):
@@ -143,7 +144,8 @@ def test_auto_keeps_one_net_where_widths_vary_little(meshes, tmp_path):
 def test_auto_splits_where_widths_vary_more_than_3x(meshes, tmp_path):
     _, lobes, _ = meshes
     r = dgpc("init", lobes, *ALONG, "--patches", "auto", "-o", tmp_path / "l")
-    assert [p.split("/")[-1] for p in r.stdout.split()] == ["l.p1.json", "l.p2.json"]
+    assert [p.split("/")[-1] for p in r.stdout.split()] == ["l.p1.json", "l.p2.json",
+                                                             "l.json"]
     for k in (1, 2):
         record = read_net(tmp_path / f"l.p{k}").data["patches"]
         assert record["single"]["width_ratio"] > WIDTH_RATIO_LIMIT
@@ -247,7 +249,8 @@ def test_existing_patch_nets_are_kept_without_force(meshes, tmp_path):
     (tmp_path / "a.p1.json").unlink()
     before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
     r = dgpc("init", lobes, *ALONG, "--patches", 2, "--extend", 0, "-o", tmp_path / "a", expect=1)
-    assert "already exists; use --force" in r.stderr and "a.p1" in r.stderr
+    # the patch set a.json, checked first
+    assert "already exists; use --force" in r.stderr and "a.json" in r.stderr
     assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
     dgpc("init", lobes, *ALONG, "--patches", 2, "--extend", 0, "-o", tmp_path / "a", "--force")
     assert (tmp_path / "a.p1.json").is_file()

@@ -132,7 +132,6 @@ def test_png_renamed_obj(tmp_path):
 
 def test_usage_errors_exit_2(tmp_path):
     path = save(tmp_path / "m.obj", *grid_mesh(6))
-    dgpc("init", path, "-o", tmp_path / "out", expect=2)                        # no method
     dgpc("init", path, "--method", "project", "--base", "b1", "-o", tmp_path / "out",
          expect=2)                                                   # a base curve: geodesic
     dgpc("init", path, "--method", "geodesic", "--base", "b1", "--angle", 10, "-o",

@@ -98,9 +98,13 @@ def parse_direction(text: str | None):
               help="With --method: split the mesh into K patches along the necks and valleys "
                    "between its lobes and make one net on each (STEM.p1, STEM.p2, ..., each "
                    "with its patch STEM.pK.patch.obj as its reference, so that `optimize "
-                   "--mode fit` and `planarize-strips --trim` keep to the patch); 'auto': only "
-                   "where the single net's strips vary in width more than 3x along them "
-                   "(else one net, STEM). stdout lists the nets; data.patches says why.")
+                   "--mode fit` and `planarize-strips --trim` keep to the patch), and STEM the "
+                   "patch set listing them, which the later stages take as they take one net; "
+                   "'auto': only where the single net's strips vary in width more than 3x along "
+                   "them (else one net, STEM). stdout lists the nets and the set; data.patches "
+                   "says why. Not given: 'auto' where init chose the net itself (no --base, "
+                   "--direction, --angle, --extend, --rows, --cols, --edge-length) and it covers "
+                   "less than 97 % after a quick fit or folds; '1' keeps one net.")
 @click.option("--rows", "rows", type=click.IntRange(min=3),
               help="m: vertices along the geodesics (required with --surface; default with a "
                    "mesh: square quads).")

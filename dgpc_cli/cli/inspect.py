@@ -87,11 +87,29 @@ def _inspect_laths(json_path: Path, **_) -> dict:
 INSPECTORS.update(laths=_inspect_laths)
 
 
+def _inspect_patchset(json_path: Path, **options) -> dict:
+    """Every member's metrics, by name (``members``), as its own kind's."""
+    from dgpc_cli.io.patch_set import member_stems
+
+    members = {}
+    for name, stem in member_stems(json_path):
+        member_json, _ = artifact_paths(stem)
+        kind = artifact_kind(member_json)
+        if kind not in INSPECTORS or kind == "patchset":
+            raise DgpcError(f"inspecting '{kind}' artifacts is not supported yet",
+                            source=member_json)
+        members[name] = {"kind": kind, **INSPECTORS[kind](member_json, **options)}
+    return {"kind": "patchset", "members": members}
+
+
+INSPECTORS.update(patchset=_inspect_patchset)
+
+
 def artifact_kind(json_path: Path) -> str:
     finish_interrupted(json_path)
     doc = read_json(json_path)
     kind = doc.get("kind") if isinstance(doc, dict) else None
-    if kind not in KINDS:
+    if kind not in (*KINDS, "patchset"):
         raise DgpcError(f"kind: {kind!r} is not a dgpc artifact kind ({', '.join(KINDS)})",
                         source=json_path)
     return kind
@@ -121,7 +139,7 @@ def inspect(stem, axis, against, coverage_tol):
         raise DgpcError(f"inspecting '{kind}' artifacts is not supported yet", source=json_path)
     for name, value in (("--axis", axis), ("--against", against),
                         ("--coverage-tol", coverage_tol)):
-        if value is not None and kind != "net":
+        if value is not None and kind not in ("net", "patchset"):
             raise click.UsageError(f"{name} applies to a net; {json_path} is a {kind} "
                                    "artifact")
     metrics = INSPECTORS[kind](json_path, axis=axis, against=against,

@@ -22,6 +22,7 @@ from dgpc_cli.cli.options import (
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.flat import read_flat
+from dgpc_cli.io.patch_set import with_members
 from dgpc_cli.io.rhino import rhino_path, with_3dm
 from dgpc_cli.io.sheets import extra_path, sheets_files
 from dgpc_cli.io.units import mm_per_unit, same_units
@@ -115,7 +116,8 @@ def nest(ctx, stems, mold_stem, sheet_size, tool, kerf, tool_diameter, margin, s
     as few sheets as it can, and write the sheets artifact -o SHEETS: SHEETS.json, .obj,
     .parts.csv and per sheet SHEETS.sheetNN.dxf/.svg/.png (with --mold, .moldmap.dxf).
 
-    Several FLATs (the patches of one facade) are nested together: part ids become TAG:ID,
+    Several FLATs (the patches of one facade, or the members of a patch set of flats: `unfold`
+    of `init --patches`) are nested together: part ids become TAG:ID,
     TAG the flat's name, or its folder's name when the names repeat (facade-2/flat →
     facade-2:S-v03), and congruent parts of different flats are one class, its quantity
     summed over them (recorded in the JSON's data.combined).
@@ -131,6 +133,7 @@ def nest(ctx, stems, mold_stem, sheet_size, tool, kerf, tool_diameter, margin, s
         option, message = err.args
         raise click.BadParameter(message, ctx=ctx, param_hint=f"'{option}'") from None
     margin, spacing = cutter.margin, cutter.spacing
+    stems = with_members(stems)
     json_paths = [artifact_paths(stem)[0] for stem in stems]
     check_writable(output, force, extra_path(output, "parts_csv"),
                    *([rhino_path(output)] if fmt == "3dm" else []),

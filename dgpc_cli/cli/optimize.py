@@ -10,6 +10,7 @@ import click
 from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt
+from dgpc_cli.cli.patch_set_members import on_members
 from dgpc_cli.cli.progress import SolverProgress
 from dgpc_cli.core.solver.linear import BACKENDS
 from dgpc_cli.errors import NotConverged
@@ -85,8 +86,11 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
     Exit code 3 if the last step does not reach --tol, if the net is pleated, in revolution
     mode if a quad is further than --max-strain from the surface of revolution, or, in
     isometric mode, if its strain or gpc angle defect is above --max-strain or --gpc-tol (the
-    artifact is still written, with its status).
+    artifact is still written, with its status). A patch set (init --patches) is optimized
+    member by member (-o STEM2.pK, and STEM2 the set of them).
     """
+    if on_members(ctx, stem, output, force, "optimize"):
+        return
     try:
         schedules = mode_weights(mode, weights)
     except ValueError as err:

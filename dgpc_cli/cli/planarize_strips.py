@@ -9,6 +9,7 @@ import click
 
 from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt, progressbar
+from dgpc_cli.cli.patch_set_members import on_members
 from dgpc_cli.errors import DgpcError, NotConverged
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
@@ -96,8 +97,11 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
     A net isometric to a surface of revolution (extract-mold accepts it) with equally wide
     strips gets one template: a flat strip shared by all strips, each strip an exact bending
     of it fitted to its net strip (data.template records it); --per-strip keeps every strip
-    on its own.
+    on its own. A patch set (init --patches) is planarized member by member (-o STEM2.pK, and
+    STEM2 the set of them).
     """
+    if on_members(ctx, stem, output, force, "planarize-strips"):
+        return
     json_path, _ = artifact_paths(stem)
     check_writable(output, force)
     net = read_net(stem)

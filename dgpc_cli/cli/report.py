@@ -20,7 +20,8 @@ def report(stems, output, force):
     """Figures of the artifact STEM and PREFIX-index.html showing them with the artifact's
     metrics as a table. Several STEMs (a project's net, strips, flat parts, sheets, mold):
     each one's report under PREFIX-NAME (NAME its file name) and PREFIX-index.html showing
-    all their figures, each with a link to its own page. Per kind:
+    all their figures, each with a link to its own page; a patch set (init --patches) counts
+    as its members. Per kind:
 
     \b
     net     PREFIX-width.png (strip width), PREFIX-curvature.png (Gaussian curvature K, red
@@ -48,9 +49,10 @@ def report(stems, output, force):
     from dgpc_cli.cli.inspect import artifact_kind
     from dgpc_cli.io.artifact import artifact_paths
     from dgpc_cli.io.atomic import write_files
+    from dgpc_cli.io.patch_set import with_members
     from dgpc_cli.stages.report import overview_files, previous_report_files, report_files
 
-    json_paths = [artifact_paths(stem)[0] for stem in stems]
+    json_paths = [artifact_paths(stem)[0] for stem in with_members(stems)]
     kinds = [artifact_kind(p) for p in json_paths]
     if len(json_paths) == 1:
         files = report_files(json_paths[0], kinds[0], output)

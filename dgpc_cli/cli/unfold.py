@@ -15,6 +15,7 @@ from dgpc_cli.cli.options import (
     label_style_opt,
     output_opt,
 )
+from dgpc_cli.cli.patch_set_members import on_members
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.flat import FlatArtifact, csv_path, flat_files
@@ -59,7 +60,8 @@ log = logging.getLogger(__name__)
 @output_opt
 @force_opt
 @format_opt
-def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, output, force,
+@click.pass_context
+def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, output, force,
            fmt):
     """Develop the planar-quad strips of the strips artifact STEM into the plane (paper §6.2.4).
 
@@ -78,8 +80,12 @@ def unfold(stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, 
     class, its quantity and its copies' ids in --label-style); where the copies of a template
     share its outline but not its score lines (a shared-outline template: each strip its own
     rulings), one DXF per copy instead, STEM2.C01.S-v03.dxf, ... (the outline, the copy's own
-    score lines), and the cut list says "per copy" in its score_lines column.
+    score lines), and the cut list says "per copy" in its score_lines column. A patch set of
+    strips is unfolded member by member (-o STEM2.pK, and STEM2 the set of them).
     """
+    if on_members(ctx, stem, output, force, "unfold",
+                  extra=lambda out: (csv_path(out), csv_path(out, "assembly"))):
+        return
     if stagger is not None and stock_length is None:
         raise click.UsageError("--stagger goes with --stock-length")
     json_path, _ = artifact_paths(stem)

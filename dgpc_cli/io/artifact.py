@@ -25,7 +25,8 @@ KINDS = ("net", "mold", "strips", "flat", "sheets", "laths")
 #: The stage that makes each kind, for messages about an artifact of the wrong kind.
 MADE_BY = {"net": "dgpc init (or dgpc optimize NET)", "mold": "dgpc extract-mold NET",
            "strips": "dgpc planarize-strips NET", "flat": "dgpc unfold STRIPS",
-           "sheets": "dgpc nest FLAT", "laths": "dgpc laths NET_A NET_B"}
+           "sheets": "dgpc nest FLAT", "laths": "dgpc laths NET_A NET_B",
+           "patchset": "dgpc init MESH --patches"}
 ENVELOPE_KEYS = ("kind", "schema_version", "created_by", "inputs", "parameters", "data",
                  "metrics", "status")
 

@@ -14,12 +14,14 @@ import numpy as np
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import net_files
+from dgpc_cli.io.patch_set import is_patch_set, member_files, previous_files
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.units import UNIT_NAMES
 from dgpc_cli.stages.init import init_revolution
 from dgpc_cli.stages.init_mesh_net import Status, mesh_net
 from dgpc_cli.stages.init_patch_nets import patch_nets
 from dgpc_cli.stages.inspect import summarize
+from dgpc_cli.stages.patch_set_run import write_patch_set
 
 
 def assumed_units_line(f, units: str) -> str:
@@ -62,6 +64,13 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
                         largest_component=largest_component, extend=extend, status=status,
                         say=say)
         net, mesh = made.net, made.mesh
+        switched = patches is None and made.poor is not None and _search_chooses(
+            method, base, direction, angle, extend, rows, cols, spacing)
+        if switched:
+            patches = "auto"
+            if say is not None:
+                say(f"init: {made.poor}: trying --patches auto (one net each where one net's "
+                    "strips vary in width more than 3x; --patches 1 keeps one net)")
         if patches is not None:
             written = patch_nets(net, mesh, patches, output,
                                  {"method": method, "base": base, "direction": direction,
@@ -70,9 +79,14 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
                                   "extend": net.parameters.get("extend", 0.0),
                                   "given_extend": extend,
                                   "largest_component": largest_component},
-                                 units=units, fmt=fmt, force=force, check=check, say=say)
+                                 units=units, fmt=fmt, force=force, check=check, say=say,
+                                 switched=switched)
             if written:
-                return written
+                return [*written, write_patch_set(
+                    output, "init", [{"name": f"p{k}", "kind": "net", "json": j,
+                                      "exit_code": 0,
+                                      "files": member_files(j, (_patch_mesh(j),))}
+                                     for k, j in enumerate(written, start=1)], force=force)]
         elif made.poor and say is not None:
             say(f"init: {made.poor}; --patches auto cuts the mesh into patches, one net each, "
                 "where one net's strips vary in width more than 3x")
@@ -93,5 +107,20 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
     if not units_given and say is not None:
         say(assumed_units_line(net.f, units))
     files.update(with_3dm(net_files(output, net), output, fmt))
-    write_files(files, force=force)
+    # a patch set written here before: its members go (as it lists them)
+    write_files(files, force=force,
+                replaces=previous_files(json_path) if is_patch_set(json_path) else ())
     return [json_path]
+
+
+def _search_chooses(method: str, base, direction, angle, extend, rows, cols, spacing) -> bool:
+    """Whether ``init`` chose the net itself (``--method geodesic`` without ``--base``,
+    ``--direction``, ``--angle``, ``--extend``, ``--rows``, ``--cols`` or ``--edge-length``), so
+    that it may also choose patches where one net is poor: explicit options win."""
+    return (method == "geodesic" and base in (None, "auto")
+            and all(x is None for x in (direction, angle, extend, rows, cols, spacing)))
+
+
+def _patch_mesh(json_path: Path) -> Path:
+    """The patch mesh ``STEM.pK.patch.obj`` written beside the patch net ``STEM.pK.json``."""
+    return json_path.with_name(json_path.name[:-len(".json")] + ".patch.obj")

@@ -60,11 +60,15 @@ def _searched(m, whole, options: dict):
 
 def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, *,
                units: str, fmt: str, force: bool, check: Callable[..., None],
-               say: Callable[[str], None] | None = None) -> list[Path] | None:
+               say: Callable[[str], None] | None = None,
+               switched: bool = False) -> list[Path] | None:
     """Make and write the patch nets of ``--patches`` (``options``: the command's mesh
     options); the JSON paths written, or None when one patch is kept (``single`` then records
     why, and the caller writes it as usual). ``check(stem, force, *extra)`` refuses a target
-    before anything is written; ``say``, when given, gets the lines that say why and what."""
+    before anything is written; ``say``, when given, gets the lines that say why and what.
+    ``switched``: ``init`` chose ``--patches auto`` itself (the single net is poor); one net
+    is then kept as it was made, recording nothing of patches, unless the patches cover more
+    of the mesh than it."""
     from dgpc_cli.core.reference import ReferenceSurface
     from dgpc_cli.geodesics.extension import (
         FIT_REACH,
@@ -106,8 +110,17 @@ def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, 
     count = None if patches == "auto" else int(patches)
     nets, record = plan(mesh, count, stem, single.f, choice["chosen"], choice["coverage"],
                         make)
+    if switched and nets:
+        area = sum(p.patch.area for p in nets)
+        covered = sum(p.patch.area * p.outcome.coverage for p in nets) / area
+        if covered <= choice["coverage"]:
+            record["reason"] += (f"; but the patches cover {100 * covered:.1f} % of the mesh, "
+                                 f"no more than one net ({100 * choice['coverage']:.1f} %)")
+            nets = []
     if say is not None:
         say(f"init: {record['reason']}")
+    if not nets and switched:
+        return None
     if not nets:
         single.parameters["patches"] = patches
         single.data["patches"] = record
