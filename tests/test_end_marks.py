@@ -1,12 +1,11 @@
 """End marks: every part on a cut sheet and in its template carries a chevron pointing at its
 first-row end and that row's number, inside the part, clear of its score lines."""
 
-import re
-
 import ezdxf
 import numpy as np
 import pytest
 from cli_helpers import dgpc
+from dxf_checks import END_MARK
 from shapely.geometry import LineString, Point, Polygon
 
 from dgpc_cli.io.flat import read_flat
@@ -33,7 +32,7 @@ def _marks(msp, layer="LABEL"):
                 if len(e) == 3]
     rows = [(e.dxf.text, np.array((e.dxf.align_point if e.dxf.halign or e.dxf.valign
                                     else e.dxf.insert))[:2])
-            for e in msp.query(f"TEXT[layer=='{layer}']") if re.fullmatch(r"R\d+", e.dxf.text)]
+            for e in msp.query(f"TEXT[layer=='{layer}']") if END_MARK.fullmatch(e.dxf.text)]
     return chevrons, rows
 
 
