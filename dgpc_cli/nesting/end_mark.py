@@ -3,7 +3,7 @@ row's, so an installer does not mount a part end-for-end (its taper and rulings 
 against its neighbours).
 
 The mark lies inside the part's first cell (the quad between its first-row end and its first
-score line), on the labels' layer: a chevron whose apex points at the first-row end, and beyond
+score line; the second on a part of four or more cells whose first is too short), on the labels' layer: a chevron whose apex points at the first-row end, and beyond
 it, along the strip, the row's number (``R0``) read upright (beside the chevron, across the
 strip, where the first cell is too short for that). It is as large as the part's width
 at that end allows (:data:`WIDTH_FRACTION`, capped at the labels' :data:`MAX_TEXT_MM`), shrunk
@@ -39,12 +39,13 @@ SHRINK = 0.85 ** np.arange(24)
 @dataclass(frozen=True)
 class EndMark:
     """A part's end mark: the ``chevron`` polyline ``(3, 2)`` pointing at its first-row end,
-    the row's ``label``, and ``reach`` how far (mm) from that end, along the part, it and its
-    clearance extend."""
+    the row's ``label``, ``reach`` how far (mm) from that end, along the part, it and its
+    clearance extend, and the ``cell`` it lies in (0 the first)."""
 
     chevron: np.ndarray
     label: Label
     reach: float
+    cell: int = 0
 
 
 def _frame(A: np.ndarray, B: np.ndarray):
@@ -78,7 +79,9 @@ def _shapes(e, d, n, t: float, h: float, text: str, beside: bool):
 
 def end_mark(outline, score, A, B, row: int) -> EndMark | None:
     """The end mark of a part (``outline``, ``score`` lines, geodesics ``A, B (m, 2)`` in mm,
-    its first row ``row`` at ``A[0], B[0]``); None when no mark of :data:`MIN_MARK_MM` fits."""
+    its first row ``row`` at ``A[0], B[0]``) in its first cell, or in its second where the
+    first (a board's end cut just short of a ruling) is too short and the part has at least
+    four cells; None when no mark of :data:`MIN_MARK_MM` fits."""
     A, B = np.asarray(A, float), np.asarray(B, float)
     if len(A) < 2:
         return None
@@ -88,38 +91,48 @@ def end_mark(outline, score, A, B, row: int) -> EndMark | None:
         room = room.buffer(0)
     lines = [LineString(np.asarray(s, float)) for s in score if len(s) >= 2]
     scored = shapely.union_all(lines) if lines else None
-    first = Polygon([A[0], A[1], B[1], B[0]]).buffer(0)
-    length = min(float((A[1] - A[0]) @ d), float((B[1] - B[0]) @ d))
-    if len(A) == 2:
-        length *= ONE_CELL_REACH
-    text = f"R{int(row)}"
     top = min(WIDTH_FRACTION * width, MAX_TEXT_MM)
-    start = max(float((A[0] - e) @ d), float((B[0] - e) @ d))    # past a slanted end
+    for k in (0, 1) if len(A) >= 5 else (0,):
+        cell = Polygon([A[k], A[k + 1], B[k + 1], B[k]]).buffer(0).buffer(1e-9)
+        near = max(float((A[k] - e) @ d), float((B[k] - e) @ d))    # past a slanted end
+        limit = min(float((A[k + 1] - e) @ d), float((B[k + 1] - e) @ d))
+        if len(A) == 2:
+            limit = near + ONE_CELL_REACH * (limit - near)
+        found = _fit(e, d, n, top, near, limit, f"R{int(row)}", room, cell, scored)
+        if found is not None:
+            return EndMark(*found, cell=k)
+    return None
+
+
+def _fit(e, d, n, top, near, limit, text, room, cell, scored):
+    """``(chevron, label, reach)`` of the largest mark from ``near`` to ``limit`` along ``d``
+    inside ``room`` and ``cell`` with its clearance, crossing no ``scored`` line; None."""
     for h in top * SHRINK:
         if h < MIN_MARK_MM:
-            break
+            return None
         gap = CLEARANCE_MM + CLEARANCE_H * h
-        for t, beside in product(start + gap + h * np.arange(0.0, 4.0, 0.25), (False, True)):
+        for t, beside in product(near + gap + h * np.arange(0.0, 4.0, 0.25), (False, True)):
             chevron, label = _shapes(e, d, n, t, h, text, beside)
-            mark = shapely.union_all([LineString(chevron), Polygon(label.box())])
-            zone = mark.buffer(gap)
-            far = float(np.max(np.asarray(zone.exterior.coords) @ d - e @ d)) \
-                if zone.geom_type == "Polygon" else np.inf
-            if far > start + length:
+            zone = shapely.union_all([LineString(chevron), Polygon(label.box())]).buffer(gap)
+            if zone.geom_type != "Polygon":
                 continue
-            if room.contains(zone) and first.buffer(1e-9).contains(zone) and \
+            far = float(np.max(np.asarray(zone.exterior.coords) @ d - e @ d))
+            if far > limit:
+                continue
+            if room.contains(zone) and cell.contains(zone) and \
                     (scored is None or not scored.intersects(zone)):
-                return EndMark(chevron, label, far)
+                return chevron, label, far
     return None
 
 
 def beyond(A, B, mark: EndMark | None):
-    """The geodesics ``A, B`` the part's id label may use: without the part of the first cell
-    the ``mark`` takes (without the first cell when it takes it all)."""
+    """The geodesics ``A, B`` the part's id label may use: from the ``mark``'s cell on,
+    without the part of that cell the mark takes (without the cell when it takes it all)."""
     A, B = np.asarray(A, float), np.asarray(B, float)
-    if mark is None:
+    if mark is None or mark.cell >= len(A) - 1:                 # not in these cells
         return A, B
     e, d, _, _ = _frame(A, B)
+    A, B = A[mark.cell:], B[mark.cell:]
     cut = []
     for G in (A, B):
         step = float((G[1] - G[0]) @ d)
