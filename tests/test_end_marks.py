@@ -9,7 +9,7 @@ from dxf_checks import END_MARK
 from shapely.geometry import LineString, Point, Polygon
 
 from dgpc_cli.io.flat import read_flat
-from dgpc_cli.io.sheets import read_sheets
+from dgpc_cli.io.sheets import read_sheets, transform
 
 SCALE = 10.0            # the net in cm, ten times: 1 net unit = 100 mm
 MM = 10.0 * SCALE
@@ -24,21 +24,26 @@ def sample(tmp_path_factory):
     dgpc("unfold", folder / "s", "-o", folder / "flat")
     dgpc("nest", folder / "flat", "--sheet", "1200x800", "--rotations", "0,90,180,270",
          "--scale", SCALE, "-o", folder / "sh")
+    # boards, all placed turned end-for-end
+    dgpc("unfold", folder / "s", "--stock-length", 2, "-o", folder / "boards")
+    dgpc("nest", folder / "boards", "--sheet", "1200x800", "--rotations", "180",
+         "--scale", SCALE, "-o", folder / "bsh")
     return folder
 
 
 def _marks(msp, layer="LABEL"):
     chevrons = [np.array(e.get_points("xy")) for e in msp.query(f"LWPOLYLINE[layer=='{layer}']")
                 if len(e) == 3]
-    rows = [(e.dxf.text, np.array((e.dxf.align_point if e.dxf.halign or e.dxf.valign
-                                    else e.dxf.insert))[:2])
+    rows = [(e.dxf.text, np.array(e.dxf.align_point if e.dxf.halign or e.dxf.valign
+                                    else e.dxf.insert)[:2])
             for e in msp.query(f"TEXT[layer=='{layer}']") if END_MARK.fullmatch(e.dxf.text)]
     return chevrons, rows
 
 
-def test_every_sheet_part_has_its_end_mark_at_its_first_row(sample):
-    art = read_sheets(sample / "sh")
-    flat = {p["id"]: p for p in read_flat(sample / "flat").parts}
+@pytest.mark.parametrize("flat_stem, sheets", [("flat", "sh"), ("boards", "bsh")])
+def test_every_sheet_part_has_its_end_mark_at_its_first_row(sample, flat_stem, sheets):
+    art = read_sheets(sample / sheets)
+    flat = {p["id"]: p for p in read_flat(sample / flat_stem).parts}
     checked = 0
     for s, rec in enumerate(art.data["sheets"]):
         msp = ezdxf.readfile(art.file(rec["dxf"])).modelspace()
@@ -47,11 +52,9 @@ def test_every_sheet_part_has_its_end_mark_at_its_first_row(sample):
                  for e in msp.query("LWPOLYLINE[layer=='SCORE']")]
         for pl in (p for p in art.data["placements"] if p["sheet"] == s):
             part = flat[pl["part"]]
-            a = np.radians(pl["rotation"])
-            R = np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
 
-            def place(x):
-                return MM * np.asarray(x, float) @ R.T + pl["translation"]
+            def place(x, pl=pl):
+                return transform(MM * np.asarray(x, float), pl["rotation"], pl["translation"])
 
             outline = Polygon(place(part["outline"]))
             A, B = (place(g) for g in part["geodesics"])

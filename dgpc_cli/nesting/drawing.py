@@ -19,8 +19,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..io.dxf import SHEET_LAYERS, Drawing, Layer
-from .geometry import transform
 from .end_mark import EndMark, beyond, end_mark
+from .geometry import transform
 from .labels import place_labels
 
 MAP_LAYERS = {"PROFILE": Layer(7), "AXIS": Layer(8, "CENTER"), "SECTOR": Layer(8),

@@ -3,7 +3,8 @@ row's, so an installer does not mount a part end-for-end (its taper and rulings 
 against its neighbours).
 
 The mark lies inside the part's first cell (the quad between its first-row end and its first
-score line; the second on a part of four or more cells whose first is too short), on the labels' layer: a chevron whose apex points at the first-row end, and beyond
+score line; the second where the first is too short, within the part's first half), on the
+labels' layer: a chevron whose apex points at the first-row end, and beyond
 it, along the strip, the row's number (``R0``) read upright (beside the chevron, across the
 strip, where the first cell is too short for that). It is as large as the part's width
 at that end allows (:data:`WIDTH_FRACTION`, capped at the labels' :data:`MAX_TEXT_MM`), shrunk
@@ -80,8 +81,8 @@ def _shapes(e, d, n, t: float, h: float, text: str, beside: bool):
 def end_mark(outline, score, A, B, row: int) -> EndMark | None:
     """The end mark of a part (``outline``, ``score`` lines, geodesics ``A, B (m, 2)`` in mm,
     its first row ``row`` at ``A[0], B[0]``) in its first cell, or in its second where the
-    first (a board's end cut just short of a ruling) is too short and the part has at least
-    four cells; None when no mark of :data:`MIN_MARK_MM` fits."""
+    first (a board's end cut just short of a ruling) is too short, never beyond the part's
+    half-length; None when no mark of :data:`MIN_MARK_MM` fits."""
     A, B = np.asarray(A, float), np.asarray(B, float)
     if len(A) < 2:
         return None
@@ -92,12 +93,14 @@ def end_mark(outline, score, A, B, row: int) -> EndMark | None:
     lines = [LineString(np.asarray(s, float)) for s in score if len(s) >= 2]
     scored = shapely.union_all(lines) if lines else None
     top = min(WIDTH_FRACTION * width, MAX_TEXT_MM)
-    for k in (0, 1) if len(A) >= 5 else (0,):
+    half = 0.5 * min(float((A[-1] - e) @ d), float((B[-1] - e) @ d))
+    for k in (0, 1) if len(A) >= 3 else (0,):
         cell = Polygon([A[k], A[k + 1], B[k + 1], B[k]]).buffer(0).buffer(1e-9)
         near = max(float((A[k] - e) @ d), float((B[k] - e) @ d))    # past a slanted end
         limit = min(float((A[k + 1] - e) @ d), float((B[k + 1] - e) @ d))
         if len(A) == 2:
             limit = near + ONE_CELL_REACH * (limit - near)
+        limit = min(limit, half)                     # nearer the first end than the other
         found = _fit(e, d, n, top, near, limit, f"R{int(row)}", room, cell, scored)
         if found is not None:
             return EndMark(*found, cell=k)
