@@ -110,18 +110,16 @@ def end_mark(outline, score, A, B, row: int) -> EndMark | None:
 def _fit(e, d, n, top, near, limit, text, room, cell, scored):
     """``(chevron, label, reach)`` of the largest mark from ``near`` to ``limit`` along ``d``
     inside ``room`` and ``cell`` with its clearance, crossing no ``scored`` line; None."""
-    for h in top * SHRINK:
+    for h in min(top, (limit - near) / 0.7) * SHRINK:    # the chevron alone is 0.6 h deep
         if h < MIN_MARK_MM:
             return None
         gap = CLEARANCE_MM + CLEARANCE_H * h
         for t, beside in product(near + gap + h * np.arange(0.0, 4.0, 0.25), (False, True)):
             chevron, label = _shapes(e, d, n, t, h, text, beside)
-            zone = shapely.union_all([LineString(chevron), Polygon(label.box())]).buffer(gap)
-            if zone.geom_type != "Polygon":
-                continue
-            far = float(np.max(np.asarray(zone.exterior.coords) @ d - e @ d))
+            far = float(np.max(np.concatenate([chevron, label.box()]) @ d - e @ d)) + gap
             if far > limit:
                 continue
+            zone = shapely.union_all([LineString(chevron), Polygon(label.box())]).buffer(gap)
             if room.contains(zone) and cell.contains(zone) and \
                     (scored is None or not scored.intersects(zone)):
                 return chevron, label, far
