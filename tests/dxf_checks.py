@@ -13,6 +13,7 @@ not from dgpc's estimate.
 
 from __future__ import annotations
 
+import re
 from collections import Counter
 
 import dxfgrabber
@@ -23,6 +24,9 @@ from shapely.geometry import LineString, Polygon
 
 QUANTUM = 1e-6
 
+
+#: The text of a part's end mark (its first row's number, ``R0``), drawn with the labels.
+END_MARK = re.compile(r"R\d+")
 
 def _rounded(p) -> tuple[int, int]:
     return int(round(p[0] / QUANTUM)), int(round(p[1] / QUANTUM))

@@ -9,7 +9,7 @@ import ezdxf.bbox
 import numpy as np
 import pytest
 from cli_helpers import dgpc, metrics
-from dxf_checks import check_cam_ready
+from dxf_checks import END_MARK, check_cam_ready
 from shapely.geometry import Point, Polygon, box
 
 from dgpc_cli.io.flat import read_flat
@@ -58,7 +58,8 @@ def _read_sheet(path):
         "score": [(np.array(e.get_points("xy")), e.closed)
                   for e in msp.query("LWPOLYLINE[layer=='SCORE']")],
         "label": [(e.dxf.text, np.array(e.dxf.align_point)[:2])
-                  for e in msp.query("TEXT[layer=='LABEL']")]}
+                  for e in msp.query("TEXT[layer=='LABEL']")
+                  if not END_MARK.fullmatch(e.dxf.text)]}          # not the end marks
 
 
 def test_sheet_dxfs_pass_independent_checks(sample):
@@ -138,10 +139,17 @@ def test_border_stroke_labels_and_router_spacing(sample, tmp_path):
                          ).buffer(1e-6)
                  for lb in (p["label"] for p in art.data["placements"]
                             if p["sheet"] == rec["index"])]
+        flat = {p["id"]: p for p in read_flat(flat_stem).parts}
+        ends = []                          # the end marks' room: each part's first cell
+        for pl in (p for p in art.data["placements"] if p["sheet"] == rec["index"]):
+            A, B = (transform(SCALE * np.asarray(g, float), pl["rotation"], pl["translation"])
+                    for g in flat[pl["part"]]["geodesics"])
+            ends.append(Polygon([A[0], A[1], B[1], B[0]]).buffer(1e-6))
         homes = set()
-        for p in strokes:                  # a letter inside a label's box, or a leader
+        for p in strokes:     # a letter inside a label's box, a leader, or an end mark
             inside = [k for k, b in enumerate(boxes) if all(b.covers(Point(*q)) for q in p)]
-            assert inside or len(p) == 2, p
+            mark = any(all(c.covers(Point(*q)) for q in p) for c in ends)
+            assert inside or len(p) == 2 or mark, p
             homes.update(inside)
         assert homes == set(range(len(boxes)))           # every label lettered
         polys = [Polygon(pts) for pts, _ in ents["cut"]]

@@ -8,7 +8,7 @@ import re
 import ezdxf
 import numpy as np
 import pytest
-from dxf_checks import check_cam_ready, text_boxes
+from dxf_checks import END_MARK, check_cam_ready, text_boxes
 from shapely.geometry import LineString, Point, Polygon
 
 from dgpc_cli.io.flat import read_flat
@@ -52,12 +52,14 @@ def test_every_dxf_of_the_pipelines_is_cam_ready(pipeline_run, name):
                         <= len(pl["part"]) * pl["label"]["height"]]
                 assert near and all(home.contains(s) for s in near), pl["part"]
             continue
-        labels = text_boxes(doc)
-        # every part labelled with its full id, inside its own outline
+        labels = [(t, b) for t, b in text_boxes(doc) if not END_MARK.fullmatch(t)]
+        marks = [b for t, b in text_boxes(doc) if END_MARK.fullmatch(t)]
+        # every part labelled with its full id, inside its own outline, and end-marked
         assert sorted(t for t, _ in labels) == sheet["parts"]
         for text, box in labels:
             assert sum(poly.contains(box) for poly in cut) == 1, text
             assert text in parts
+        assert sorted(sum(poly.contains(b) for b in marks) for poly in cut) == [1] * len(cut)
 
 
 def test_gehry_profile_is_drawn_in_mm(pipeline_run):

@@ -9,7 +9,9 @@ Sheet (origin at the sheet's lower-left corner), layers of :data:`~dgpc_cli.io.d
 * ``SCORE`` — open polylines, the rulings (bend/score lines);
 * ``LABEL`` (``label_style`` text) or ``ENGRAVE`` (stroke) — the part id inside the part
   between two score lines (:mod:`dgpc_cli.nesting.labels`), or its short id beside it with a
-  leader: TEXT, or single-stroke polylines an engraver follows.
+  leader: TEXT, or single-stroke polylines an engraver follows; and on the same layer each
+  part's end mark (:mod:`dgpc_cli.nesting.end_mark`): a chevron pointing at the part's
+  first-row end and that row's number (``R0``).
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..io.dxf import SHEET_LAYERS, Drawing, Layer
+from .end_mark import EndMark, beyond, end_mark
 from .geometry import transform
 from .labels import place_labels
 
@@ -46,9 +49,28 @@ def sheet_drawing(width: float, height: float, placed: list[dict], *, border: bo
         d.polyline("CUT", p["outline"], closed=True)
         for line in p["score"]:
             d.polyline("SCORE", line)
-    labels = place_labels(placed, width, height)
+    marks = [part_end_mark(p) for p in placed]
+    labels = place_labels([{**p, "geodesics": beyond(*p["geodesics"], m)}
+                           for p, m in zip(placed, marks, strict=True)], width, height)
     draw_labels(d, labels, label_style)
+    draw_end_marks(d, marks, label_style)
     return d, labels
+
+
+def part_end_mark(part: dict) -> EndMark | None:
+    """The end mark (:mod:`dgpc_cli.nesting.end_mark`) of a part ``outline``, ``score``,
+    ``geodesics`` and ``row`` (its first end's net row) in mm."""
+    A, B = part["geodesics"]
+    return end_mark(part["outline"], part["score"], A, B, part.get("row", 0))
+
+
+def draw_end_marks(d: Drawing, marks: list, label_style: str) -> None:
+    """Draw the parts' end marks (None: no mark) on the layer of ``label_style``: the chevron
+    as a polyline, the row as the labels are drawn."""
+    for m in marks:
+        if m is not None:
+            d.polyline(LABEL_LAYER[label_style], m.chevron)
+    draw_labels(d, [m.label for m in marks if m is not None], label_style)
 
 
 def draw_labels(d: Drawing, labels: list, label_style: str) -> None:
@@ -156,9 +178,11 @@ def _wrapped(head: str, ids: list[str], per_line: int) -> list[str]:
 
 
 def placed_part(part, rotation: float, translation) -> dict:
-    """A part's outline, score lines, label point and geodesics under its placement (mm)."""
+    """A part's outline, score lines, label point and geodesics under its placement (mm),
+    and the net row of its first end."""
     return {"id": part.id, "rotation": rotation,
             "outline": transform(part.outline, rotation, translation),
             "score": [transform(s, rotation, translation) for s in part.score],
             "label": transform(part.label, rotation, translation),
-            "geodesics": [transform(g, rotation, translation) for g in part.geodesics]}
+            "geodesics": [transform(g, rotation, translation) for g in part.geodesics],
+            "row": part.row}

@@ -57,7 +57,8 @@ class Part:
     (its group leader's, of a simplified outline where it is long; added to the spacing);
     ``nfp_outline`` the outline the no-fit polygons use (simplified where long), and
     ``shape_rotation``, ``shape_offset``: the part ≈ R(shape_rotation) · leader + offset, the
-    leader's ``nfp_outline`` and ``pieces`` being its group's shape."""
+    leader's ``nfp_outline`` and ``pieces`` being its group's shape; ``row`` the net row of
+    its first end (``A[0], B[0]``), which its end mark names."""
 
     id: str
     strip: int
@@ -74,6 +75,7 @@ class Part:
     nfp_outline: np.ndarray | None = field(default=None, repr=False)
     shape_rotation: float = 0.0
     shape_offset: tuple = (0.0, 0.0)
+    row: int = 0
 
 
 def _convex(poly: np.ndarray) -> bool:
@@ -197,7 +199,7 @@ def prepare_parts(flat_parts: list[dict], k: float, tol: float = GROUP_TOL_MM,
             score=[k * np.asarray(s, float) for s in rec["score"]],
             label=k * np.asarray(rec["label"], float), geodesics=geod,
             area=float(poly.area), pieces=pieces, deviation=simplified_by,
-            nfp_outline=simple))
+            nfp_outline=simple, row=int(rec.get("rows", [0])[0])))
     polys = [Polygon(p.outline) for p in parts]
     centroid = {id(p): np.asarray(g.centroid.coords[0]) for p, g in zip(parts, polys, strict=True)}
     perimeter = {id(p): g.length for p, g in zip(parts, polys, strict=True)}

@@ -17,6 +17,9 @@ each bent along its own rulings) gets one drawing per copy instead (:func:`copy_
 own score lines, labelled with the copy's id and ``C01 copy 3 of 12``. One file with every
 copy's score lines on layers of their own would be scored whole on every copy by a CAM that
 takes all layers.
+
+Every drawing carries the part's end mark (:mod:`.end_mark`: a chevron pointing at the part's
+first-row end and that row's number), as a sheet does.
 """
 
 from __future__ import annotations
@@ -26,7 +29,8 @@ from dataclasses import replace
 import numpy as np
 
 from ..io.dxf import Drawing
-from .drawing import draw_labels, sheet_layers
+from .drawing import draw_end_marks, draw_labels, part_end_mark, sheet_layers
+from .end_mark import beyond
 from .labels import MIN_TEXT_MM, place_labels
 
 #: Room (× the least label height) around the part where a label that does not fit inside it
@@ -99,7 +103,7 @@ def copy_drawing(part: dict, rep: dict, cls: dict, label_style: str = "text") ->
     outline = move(part["outline"])
     moved = {"outline": outline[::-1] if np.linalg.det(R) < 0 else outline,
              "score": [move(s) for s in part["score"]], "label": move(part["label"]),
-             "geodesics": [move(g) for g in part["geodesics"]]}
+             "geodesics": [move(g) for g in part["geodesics"]], "rows": part.get("rows", [0])}
     low = np.asarray(rep["outline"], float).min(axis=0)
     texts = copy_texts(cls, part["id"], len(part["geodesics"][0]) - 1)
     return _drawing(moved, low, texts, label_style)
@@ -113,9 +117,11 @@ def _drawing(part: dict, low: np.ndarray, texts: list[str], label_style: str) ->
     outline = np.asarray(part["outline"], float) + shift
     score = [np.asarray(s, float) + shift for s in part["score"]]
     A, B = (np.asarray(g, float) + shift for g in part["geodesics"])
+    mark = part_end_mark({"outline": outline, "score": score, "geodesics": (A, B),
+                          "row": part.get("rows", [0])[0]})
     pieces = [{"id": text, "outline": outline, "score": score,
                "label": np.asarray(part["label"], float) + shift,
-               "geodesics": (A[a:b + 1], B[a:b + 1])}
+               "geodesics": beyond(A[a:b + 1], B[a:b + 1], mark if a == 0 else None)}
               for text, (a, b) in zip(texts, cell_runs(A, B, len(texts)), strict=True)]
     width, height = np.ptp(outline, axis=0) + 2 * room
     labels = [replace(lb, at=(lb.at[0] - room, lb.at[1] - room),
@@ -126,4 +132,9 @@ def _drawing(part: dict, low: np.ndarray, texts: list[str], label_style: str) ->
     for line in score:
         d.polyline("SCORE", line - room)
     draw_labels(d, labels, label_style)
+    if mark is not None:
+        draw_end_marks(d, [replace(mark, chevron=mark.chevron - room,
+                                   label=replace(mark.label, at=(mark.label.at[0] - room,
+                                                                 mark.label.at[1] - room)))],
+                       label_style)
     return d
