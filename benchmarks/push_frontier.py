@@ -2,10 +2,11 @@
 by weights (issue "drags that feel right"; not part of ``make bench``: a study of a few minutes).
 
 The case: the meridian net of the built-in half sphere (radius 5, 120° wide; ``--profile``
-another built-in profile), the two corners of row 0 held and its middle pushed 5 % of the
-radius towards the axis, ``--mode isometric``, 5 steps (as ``tests/test_freeform_drags.py``
-builds it). Printed, one line per run: the state ``optimize`` would report, the largest
-strain against the input (paper §6.1), the largest third difference across the geodesics (``crease_max``, mean edges), the gpc angle defect (rad).
+another built-in profile), the two corners of row 0 held and its middle pushed 5 % of the radius
+towards the axis, ``--mode isometric``, 5 steps (as ``tests/test_freeform_drags.py`` builds it).
+Printed, one line per run: the state ``optimize`` would report, the largest strain against the
+input (paper §6.1), the largest third difference across the geodesics (``crease_max``, mean
+edges), the gpc angle defect (rad).
 
 1. By size (m = n): the mode's weights, and without the crease guard.
 2. At 21×21, by weights: (6) weighed 0.3, 1, 3 against the edge lengths; the guard at 1, 1e-3,
