@@ -88,18 +88,21 @@ INSPECTORS.update(laths=_inspect_laths)
 
 
 def _inspect_patchset(json_path: Path, **options) -> dict:
-    """Every member's metrics, by name (``members``), as its own kind's."""
-    from dgpc_cli.io.patch_set import member_stems
+    """Every member's metrics, by name (``members``), as its own kind's; the members whose
+    stage failed (``failed``: stage, exit code, reason), when there are some."""
+    from dgpc_cli.io.patch_set import failed_members, listed_members, read_patch_set
 
     members = {}
-    for name, stem in member_stems(json_path):
+    for name, stem in listed_members(json_path):
         member_json, _ = artifact_paths(stem)
         kind = artifact_kind(member_json)
         if kind not in INSPECTORS or kind == "patchset":
             raise DgpcError(f"inspecting '{kind}' artifacts is not supported yet",
                             source=member_json)
         members[name] = {"kind": kind, **INSPECTORS[kind](member_json, **options)}
-    return {"kind": "patchset", "members": members}
+    failed = {m["name"]: {k: m[k] for k in ("stage", "exit_code", "reason")}
+              for m in failed_members(read_patch_set(json_path))}
+    return {"kind": "patchset", "members": members, **({"failed": failed} if failed else {})}
 
 
 INSPECTORS.update(patchset=_inspect_patchset)

@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 
 from dgpc_cli.cli.options import check_writable, show_progress
-from dgpc_cli.io.patch_set import is_patch_set
+from dgpc_cli.io.patch_set import is_patch_set, member_stems
 
 
 def on_members(ctx, stem: Path, output: Path, force: bool, stage: str, **extra) -> bool:
@@ -18,6 +18,7 @@ def on_members(ctx, stem: Path, output: Path, force: bool, stage: str, **extra) 
 
     if not is_patch_set(stem):
         return False
+    member_stems(stem)              # a set with a failed member is refused before anything
     check_writable(output, force)
     say = (lambda text: click.echo(text, err=True)) if show_progress(ctx) else None
 
