@@ -31,6 +31,7 @@ from dgpc_cli.stages.unfold import (
     records_in_units,
     scale_warnings,
     template_dxfs,
+    unit_slip,
     unfold_strips,
 )
 
@@ -99,6 +100,9 @@ def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_st
     stagger_mm = (None if stock_length is None else stagger.to_mm(units) if stagger is not None
                   else STAGGER_FRACTION * stock_mm)
     geometry = [(to_mm(A, units), to_mm(B, units)) for A, B in strips.geometry]
+    slip = unit_slip(geometry, units, stock_length, stagger)
+    if slip is not None:
+        raise click.UsageError(slip)
     parts, classes, joints = unfold_strips(
         geometry, [r["id"] for r in strips.records], [r["v"] for r in strips.records],
         congruence_tol=congruence_tol.to_mm(units), mirror_ok=mirror_ok,

@@ -289,12 +289,50 @@ def class_record(cid: str, representative: str, members: list[str], errors: list
 MIN_PART_MM = 10.0
 
 
+def longest_strip_mm(geometry: list) -> float:
+    """The length of the longest of the strips ``geometry`` (mm): the mean of its two
+    boundary polylines' lengths."""
+    return max(0.5 * (float(cumulative(np.asarray(A, float))[-1]) +
+                      float(cumulative(np.asarray(B, float))[-1])) for A, B in geometry)
+
+
+def plain_length_trap(option: str, length, units: str, limit_mm: float, what: str
+                      ) -> str | None:
+    """The one-line usage error for a plain number (no unit) that is in the strips' unit
+    ``units`` but was likely meant in millimetres (issue: no silent unit traps): ``length`` (a
+    :class:`~dgpc_cli.cli.length.Length`) longer than ``limit_mm`` (``what`` it is compared
+    with, e.g. "every strip (the longest is 6.06 m)") while read as mm it would not be. None
+    when ``length`` has a unit, the strips are in mm, or neither reading is plausible."""
+    if length is None or length.unit is not None or units == "mm":
+        return None
+    if not length.to_mm(units) > limit_mm or length.value > limit_mm:
+        return None
+    k = mm_per_unit(units)
+    return (f"{option} {length.text()} is in the strips' unit ({units}): {length.value:g} "
+            f"{units} is longer than {what}; give the unit, e.g. {length.value:g}mm or "
+            f"{length.value / k:g}{units}")
+
+
+def unit_slip(geometry: list, units: str, stock_length, stagger) -> str | None:
+    """The usage error of :func:`plain_length_trap` for ``--stock-length`` (longer than every
+    strip of ``geometry``, mm) or else ``--stagger`` (longer than the stock length), if any."""
+    longest = longest_strip_mm(geometry)
+    k = mm_per_unit(units)
+    slip = plain_length_trap("--stock-length", stock_length, units, longest,
+                             f"every strip (the longest is {longest / k:.4g} {units})")
+    if slip is None and stock_length is not None and stagger is not None:
+        stock = stock_length.to_mm(units)
+        slip = plain_length_trap("--stagger", stagger, units, stock,
+                                 f"the stock length ({stock / k:.4g} {units})")
+    return slip
+
+
 def scale_warnings(parts: list[dict], geometry: list, units: str, stock_length) -> list[str]:
     """One-line warnings on an implausible scale (issue: no silent unit traps): a part
     shorter than :data:`MIN_PART_MM`, or a ``stock_length`` (a
-    :class:`~dgpc_cli.cli.length.Length`, or None) longer than every strip, each naming the
-    likely fix. ``parts`` are the records of :func:`unfold_strips` and ``geometry`` the strips,
-    both in mm."""
+    :class:`~dgpc_cli.cli.length.Length`, or None) longer than every strip: nothing to cut (a
+    plain number that read as mm would cut is a usage error, :func:`unit_slip`). ``parts``
+    are the records of :func:`unfold_strips` and ``geometry`` the strips, both in mm."""
     out = []
     shortest = min(parts, key=lambda p: p["length"])
     if shortest["length"] < MIN_PART_MM:
@@ -302,18 +340,13 @@ def scale_warnings(parts: list[dict], geometry: list, units: str, stock_length) 
                    f"{MIN_PART_MM:g} mm: the strips are in {units}; if the design is in metres, "
                    "make the net with `init --units m`")
     if stock_length is not None:
-        longest = max(0.5 * (float(cumulative(np.asarray(A))[-1]) +
-                             float(cumulative(np.asarray(B))[-1])) for A, B in geometry)
-        stock = stock_length.to_mm(units)
-        if stock > longest:
-            text = f"--stock-length {stock_length.text()}"
-            where = (f" is in the strips' unit ({units})" if stock_length.unit is None
+        longest = longest_strip_mm(geometry)
+        if stock_length.to_mm(units) > longest:
+            where = (f" is in the strips' unit ({units})," if stock_length.unit is None
                      else "")
-            hint = (f": did you mean {stock_length.value:g}mm?"
-                    if stock_length.unit is None and units != "mm" else
-                    ": nothing is cut into boards")
-            out.append(f"{text}{where}, longer than every strip (the longest is "
-                       f"{longest / mm_per_unit(units):.4g} {units}){hint}")
+            out.append(f"--stock-length {stock_length.text()}{where} longer than every strip "
+                       f"(the longest is {longest / mm_per_unit(units):.4g} {units}): nothing "
+                       "is cut into boards")
     return out
 
 
