@@ -31,8 +31,8 @@ from dgpc_cli.stages.unfold import (
     records_in_units,
     scale_warnings,
     template_dxfs,
-    unit_slip,
     unfold_strips,
+    unit_slip,
 )
 
 log = logging.getLogger(__name__)
