@@ -125,6 +125,6 @@ def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_st
                     "stock_length": None if stock_mm is None else stock_mm / mm_per_unit(units),
                     "stagger": None if stagger_mm is None else stagger_mm / mm_per_unit(units)},
         inputs={"strips": file_input(json_path, out_json.resolve().parent)},
-        metrics=flat_metrics(parts, classes), status={"n_classes": len(classes)})
+        metrics=flat_metrics(parts, classes, units), status={"n_classes": len(classes)})
     write_files(with_3dm(flat_files(output, art), output, fmt), force=force)
     click.echo(str(out_json))
