@@ -296,34 +296,22 @@ def longest_strip_mm(geometry: list) -> float:
                       float(cumulative(np.asarray(B, float))[-1])) for A, B in geometry)
 
 
-def plain_length_trap(option: str, length, units: str, limit_mm: float, what: str
-                      ) -> str | None:
-    """The one-line usage error for a plain number (no unit) that is in the strips' unit
-    ``units`` but was likely meant in millimetres (issue: no silent unit traps): ``length`` (a
-    :class:`~dgpc_cli.cli.length.Length`) longer than ``limit_mm`` (``what`` it is compared
-    with, e.g. "every strip (the longest is 6.06 m)") while read as mm it would not be. None
-    when ``length`` has a unit, the strips are in mm, or neither reading is plausible."""
-    if length is None or length.unit is not None or units == "mm":
-        return None
-    if not length.to_mm(units) > limit_mm or length.value > limit_mm:
-        return None
-    k = mm_per_unit(units)
-    return (f"{option} {length.text()} is in the strips' unit ({units}): {length.value:g} "
-            f"{units} is longer than {what}; give the unit, e.g. {length.value:g}mm or "
-            f"{length.value / k:g}{units}")
-
-
 def unit_slip(geometry: list, units: str, stock_length, stagger) -> str | None:
-    """The usage error of :func:`plain_length_trap` for ``--stock-length`` (longer than every
-    strip of ``geometry``, mm) or else ``--stagger`` (longer than the stock length), if any."""
+    """The usage error for a plain ``--stock-length`` (longer than every strip of
+    ``geometry``, mm) or else ``--stagger`` (longer than the stock length) in the strips'
+    unit that was likely meant in mm (:meth:`~dgpc_cli.cli.length.Length.unit_slip`; both
+    lengths ``Length`` or None), if any."""
+    if stock_length is None:
+        return None
     longest = longest_strip_mm(geometry)
     k = mm_per_unit(units)
-    slip = plain_length_trap("--stock-length", stock_length, units, longest,
-                             f"every strip (the longest is {longest / k:.4g} {units})")
-    if slip is None and stock_length is not None and stagger is not None:
+    slip = stock_length.unit_slip("--stock-length", units, longest,
+                                  f"every strip (the longest is {longest / k:.4g} {units})",
+                                  "the strips'")
+    if slip is None and stagger is not None:
         stock = stock_length.to_mm(units)
-        slip = plain_length_trap("--stagger", stagger, units, stock,
-                                 f"the stock length ({stock / k:.4g} {units})")
+        slip = stagger.unit_slip("--stagger", units, stock,
+                                 f"the stock length ({stock / k:.4g} {units})", "the strips'")
     return slip
 
 
