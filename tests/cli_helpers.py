@@ -35,6 +35,15 @@ def add_noise(src, dst, fraction, seed=0):
     return dst
 
 
+def revolution_strips(d, profile, rows, cols, span, units, net="net"):
+    """In folder ``d``: a net of revolution of the built-in ``profile`` (``rows`` × ``cols``,
+    ``span`` degrees, in ``units``) as ``d/net`` and its planar-quad strips as ``d/s``."""
+    dgpc("init", "--surface", "revolution", "--profile", profile, "--rows", rows, "--cols", cols,
+         "--span", span, "--units", units, "-o", d / net)
+    dgpc("planarize-strips", d / net, "-o", d / "s")
+    return d / "s"
+
+
 def bent_catenoid_chain(d):
     """In folder ``d``: a 9×7 catenoid ring bent by Minding (λ 0.7) as ``bent``, its ``mold``,
     ``strips``, ``flat`` and ``sheets`` (700×500 mm, 100 mm per unit): one artifact of

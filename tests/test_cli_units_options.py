@@ -157,6 +157,18 @@ def test_lengths_take_units_and_are_recorded_in_the_artifacts_unit(wall):
     assert max(p["meridian_length"] for p in doc["data"]["pieces"]) <= 2.5
 
 
+def test_a_plain_mold_max_length_meant_in_millimetres_is_a_usage_error(wall, tmp_path):
+    """``--mold-max-length 2500`` on a net in metres is 2500 m, longer than the whole mold,
+    where 2500 mm would cut it: exit 2, one line naming both readings, nothing written."""
+    r = dgpc("extract-mold", wall / "wall", "--panel-size", 2, "--mold-max-length", 2500,
+             "-o", tmp_path / "m", expect=2)
+    err = [line for line in r.stderr.splitlines() if line.strip()]
+    assert len(err) == 1 and err[0].startswith("Error: --mold-max-length 2500 is in the nets' "
+                                               "unit (m): 2500 m is longer than the mold")
+    assert "give the unit, e.g. 2500mm or 2.5m" in err[0]
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_old_option_names_still_work_and_warn(wall):
     r = dgpc("extract-mold", wall / "wall", "--tol", 1e-3, "--units", "m", "-o", wall / "old")
     assert "--tol is deprecated, it is now --revolution-tol" in r.stderr

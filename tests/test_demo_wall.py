@@ -95,7 +95,7 @@ def test_the_demo_parts_add_up_to_the_walls_area(demo):
     flat = read_flat(demo / "flat")
     assert 1e6 * sum(p["area"] for p in flat.parts) == pytest.approx(cut, rel=1e-9)
     fab = read_strips(demo / "strips").metrics["fabrication"]
-    assert fab["max_end_gap"] <= 1.0
+    assert fab["max_end_gap_mm"] <= 1.0
     assert fab["area_ratio"] == pytest.approx(cut / wall, abs=1e-4)
 
 

@@ -4,7 +4,7 @@ first-row end and that row's number, inside the part, clear of its score lines."
 import ezdxf
 import numpy as np
 import pytest
-from cli_helpers import dgpc
+from cli_helpers import dgpc, revolution_strips
 from dxf_checks import END_MARK
 from shapely.geometry import LineString, Point, Polygon
 
@@ -18,9 +18,7 @@ MM = 10.0 * SCALE
 @pytest.fixture(scope="module")
 def sample(tmp_path_factory):
     folder = tmp_path_factory.mktemp("endmark")
-    dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 13, "--cols", 5,
-         "--span", 120, "--units", "cm", "-o", folder / "cat")
-    dgpc("planarize-strips", folder / "cat", "-o", folder / "s")
+    revolution_strips(folder, "catenoid", 13, 5, 120, "cm", net="cat")
     dgpc("unfold", folder / "s", "-o", folder / "flat")
     dgpc("nest", folder / "flat", "--sheet", "1200x800", "--rotations", "0,90,180,270",
          "--scale", SCALE, "-o", folder / "sh")

@@ -167,7 +167,7 @@ def test_each_patch_trimmed_parts_cover_its_patch(meshes, tmp_path):
         fab = json.loads((tmp_path / f"s{k}.json").read_text())["metrics"]["fabrication"]
         patch = load_mesh(tmp_path / f"e.p{k}.patch.obj")
         assert fab["area_reference"] == "outline"
-        assert fab["reference_area"] == pytest.approx(_area(patch.vertices, patch.faces),
+        assert fab["reference_area_m2"] == pytest.approx(_area(patch.vertices, patch.faces),
                                                       rel=1e-6)
         assert 0.99 <= fab["area_ratio"] <= 1.001, fab["area_ratio"]
 
@@ -212,8 +212,9 @@ def test_patches_need_a_mesh(tmp_path):
 
 
 def test_end_gap_warning_takes_a_strip_trimmed_away():
-    fab = {"max_end_gap": 5.0, "area_ratio": 1.0,
-           "per_strip": {"S-v00": {"end_gaps": [5.0, 1.0]}, "S-v01": {"end_gaps": [None, None]}}}
+    fab = {"max_end_gap_mm": 5.0, "area_ratio": 1.0,
+           "per_strip": {"S-v00": {"end_gaps_mm": [5.0, 1.0]},
+                         "S-v01": {"end_gaps_mm": [None, None]}}}
     (line,) = fabrication_warnings(fab)
     assert "(S-v00)" in line
 

@@ -109,8 +109,10 @@ def test_trimmed_strips_clad_the_whole_roof(extended, meshes):
     area = mesh_area(mesh)
     flat = json.loads((extended.parent / f"{extended.name}-flat.json").read_text())
     assert flat["metrics"]["max_strain"] <= 1e-9                     # planar quads
-    total = flat["metrics"]["total_area"]
-    assert 0.98 * area <= total <= 1.001 * area
+    k = mm_per_unit(flat["data"]["units"])
+    area_m2 = area * k * k * 1e-6
+    total = flat["metrics"]["total_area_m2"]
+    assert 0.98 * area_m2 <= total <= 1.001 * area_m2
     assert all(p.get("trimmed") for p in flat["data"]["parts"])
     # its OBJ (outlines and score lines, not quad strips) reads back against the JSON
     assert len(read_flat(f"{extended}-flat").parts) == len(flat["data"]["parts"])
@@ -132,11 +134,10 @@ def test_trimmed_strips_clad_the_whole_roof(extended, meshes):
     # the fabrication metrics measure the trimmed parts: against the outline, the parts'
     # ends lie on it and their area is the flat parts' (m², from the net's unit)
     fab = strips.metrics["fabrication"]
-    k = mm_per_unit(strips.units)
     assert fab["area_reference"] == "outline"
-    assert fab["area"] == pytest.approx(total * k * k * 1e-6, rel=1e-9)
-    assert fab["reference_area"] == pytest.approx(area * k * k * 1e-6, rel=1e-9)
-    assert fab["max_end_gap"] <= 0.02 * fab["mean_width"]
+    assert fab["area_m2"] == pytest.approx(total, rel=1e-9)
+    assert fab["reference_area_m2"] == pytest.approx(area_m2, rel=1e-9)
+    assert fab["max_end_gap_mm"] <= 0.02 * fab["mean_width_mm"]
 
 
 def test_trimmed_strips_clad_the_whole_clipped_dome(meshes):
@@ -154,5 +155,6 @@ def test_trimmed_strips_clad_the_whole_clipped_dome(meshes):
     dgpc("unfold", f"{stem}-s", "-o", f"{stem}-flat")
     flat = json.loads((stem.parent / f"{stem.name}-flat.json").read_text())
     assert flat["metrics"]["max_strain"] <= 1e-9
-    area = mesh_area(load_mesh(mesh))
-    assert 0.98 * area <= flat["metrics"]["total_area"] <= 1.001 * area
+    k = mm_per_unit(flat["data"]["units"])
+    area = mesh_area(load_mesh(mesh)) * k * k * 1e-6
+    assert 0.98 * area <= flat["metrics"]["total_area_m2"] <= 1.001 * area

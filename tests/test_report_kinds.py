@@ -170,7 +170,8 @@ def test_lengths_are_labelled_with_the_unit(tmp_path):
     assert re.search(r"<tr><td>gaussian_curvature\.max</td><td class=.v.>[0-9.e-]+</td>"
                      r"<td>1/ft²</td></tr>", text)
     assert re.search(r"<tr><td>R</td><td class=.v.>[0-9.e-]+</td><td></td></tr>", text)
-    assert [metric_unit(k, "m") for k in ("per_part.S-v01.length", "total_area",
+    assert [metric_unit(k, "m") for k in ("per_part.S-v01.length_mm", "total_area_m2",
                                           "hausdorff.relative", "hausdorff.max",
-                                          "strain.max", "clairaut.max_relative_mad")] == \
-        ["m", "m²", "", "m", "", ""]
+                                          "strain.max", "clairaut.max_relative_mad",
+                                          "covered_area")] == \
+        ["mm", "m²", "", "m", "", "", "m²"]

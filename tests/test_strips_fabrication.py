@@ -10,8 +10,10 @@ import pytest
 from cli_helpers import dgpc
 
 from dgpc_cli.core.reference import ReferenceSurface
+from dgpc_cli.io.flat import read_flat
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.strips import read_strips
+from dgpc_cli.io.units import mm_per_unit
 from dgpc_cli.strips.fabrication import (
     end_gaps,
     measure_strips,
@@ -43,15 +45,15 @@ def measured(f, strips):
 def test_a_strip_on_its_net_passes_every_metric():
     f = flat_net()
     s = measured(f, strips_of(f))
-    assert s["max_end_gap"] <= 1e-9
-    assert s["max_deviation"] <= 1e-9
-    assert s["max_seam_step"] <= 1e-9 and s["max_seam_gap"] <= 1e-9
-    assert s["max_ruling_angle"] <= 1e-6
+    assert s["max_end_gap_mm"] <= 1e-9
+    assert s["max_deviation_mm"] <= 1e-9
+    assert s["max_seam_step_mm"] <= 1e-9 and s["max_seam_gap_mm"] <= 1e-9
+    assert s["max_ruling_angle_deg"] <= 1e-6
     assert s["max_side_ratio"] == pytest.approx(W / H)
-    assert s["max_planarity"] <= 1e-9
+    assert s["max_planarity_mm"] <= 1e-9
     assert s["area_ratio"] == pytest.approx(1.0, abs=1e-12)
-    assert s["area"] == pytest.approx((M - 1) * H * (N - 1) * W * 1e-6)   # m² from mm
-    assert s["per_strip"]["S-v00"]["seam_step"][0] is None               # no strip v−1
+    assert s["area_m2"] == pytest.approx((M - 1) * H * (N - 1) * W * 1e-6)   # m² from mm
+    assert s["per_strip"]["S-v00"]["seam_step_mm"][0] is None               # no strip v−1
 
 
 def test_a_strip_stopping_short_of_the_edge_row_has_an_end_gap_and_less_area():
@@ -63,11 +65,11 @@ def test_a_strip_stopping_short_of_the_edge_row_has_an_end_gap_and_less_area():
     gaps = end_gaps(f[:, 1], f[:, 2], A, B)
     assert gaps == pytest.approx(np.array([[0.5 * H, 0.0], [0.0, -0.25 * H]]))
     s = measured(f, strips)
-    assert s["per_strip"]["S-v01"]["end_gaps"] == pytest.approx([0.5 * H, -0.25 * H])
-    assert s["max_end_gap"] == pytest.approx(0.5 * H)
+    assert s["per_strip"]["S-v01"]["end_gaps_mm"] == pytest.approx([0.5 * H, -0.25 * H])
+    assert s["max_end_gap_mm"] == pytest.approx(0.5 * H)
     lost = 0.5 * (0.5 * H) * W - 0.5 * (0.25 * H) * W    # the two triangles
     assert s["per_strip"]["S-v01"]["area_ratio"] == pytest.approx(1 - lost / ((M - 1) * H * W))
-    assert s["per_strip"]["S-v00"]["end_gaps"] == pytest.approx([0.0, 0.0])
+    assert s["per_strip"]["S-v00"]["end_gaps_mm"] == pytest.approx([0.0, 0.0])
 
 
 def test_a_strip_bent_off_the_net_deviates_by_the_bend():
@@ -79,7 +81,7 @@ def test_a_strip_bent_off_the_net_deviates_by_the_bend():
     dev = quad_deviation(A, B, f[:, 0], f[:, 1])
     assert dev[3] == pytest.approx(7.0) and dev[4] == pytest.approx(7.0)
     assert dev[[0, 1, 2, 5, 6, 7]] == pytest.approx(0.0, abs=1e-9)
-    assert measured(f, strips)["max_deviation"] == pytest.approx(7.0)
+    assert measured(f, strips)["max_deviation_mm"] == pytest.approx(7.0)
 
 
 @pytest.mark.parametrize("shift, step, gap", [((0, 0, 3.0), 3.0, 0.0),      # along the normal
@@ -90,10 +92,10 @@ def test_neighbours_apart_at_their_shared_geodesic_give_seam_step_and_gap(shift,
     strips = strips_of(f)
     strips[2][1][:] += np.array(shift)           # strip 2's copy of geodesic 2 moved
     s = measured(f, strips)["per_strip"]
-    assert s["S-v01"]["seam_step"][1] == pytest.approx(step, abs=1e-9)
-    assert s["S-v01"]["seam_gap"][1] == pytest.approx(gap, abs=1e-9)
-    assert s["S-v02"]["seam_step"][0] == s["S-v01"]["seam_step"][1]
-    assert s["S-v00"]["seam_step"][1] == pytest.approx(0.0, abs=1e-12)
+    assert s["S-v01"]["seam_step_mm"][1] == pytest.approx(step, abs=1e-9)
+    assert s["S-v01"]["seam_gap_mm"][1] == pytest.approx(gap, abs=1e-9)
+    assert s["S-v02"]["seam_step_mm"][0] == s["S-v01"]["seam_step_mm"][1]
+    assert s["S-v00"]["seam_step_mm"][1] == pytest.approx(0.0, abs=1e-12)
 
 
 def test_seam_step_follows_the_net_normal_on_a_curved_net():
@@ -110,8 +112,8 @@ def test_seam_step_follows_the_net_normal_on_a_curved_net():
         tangent = np.array([-np.sin(theta[2]), np.cos(theta[2]), 0.0])
         strips[2][1][:] += 2.0 * (radial if move == "radial" else tangent)
         s = measured(f, strips)["per_strip"]["S-v01"]
-        assert s["seam_step"][1] == pytest.approx(step, abs=1e-6), move
-        assert s["seam_gap"][1] == pytest.approx(gap, abs=1e-6), move
+        assert s["seam_step_mm"][1] == pytest.approx(step, abs=1e-6), move
+        assert s["seam_gap_mm"][1] == pytest.approx(gap, abs=1e-6), move
 
 
 def test_copies_on_one_curved_geodesic_with_vertices_apart_step_by_the_chord_sag():
@@ -204,21 +206,21 @@ def test_inspect_prints_the_fabrication_metrics_in_mm_and_degrees(bent_strips):
     stem = bent_strips / "strips"
     out = json.loads(dgpc("inspect", stem).stdout)
     fab = out["fabrication"]
-    assert fab["units"] == {"length": "mm", "angle": "degrees", "area": "m²"}
     art = read_strips(stem)
     ids = [r["id"] for r in art.records]
     assert list(fab["per_strip"]) == ids
-    for key in ("end_gaps", "deviation", "seam_step", "seam_gap", "ruling_angle",
-                "side_ratio", "planarity", "area_ratio"):
+    for key in ("end_gaps_mm", "deviation_mm", "seam_step_mm", "seam_gap_mm",
+                "ruling_angle_deg", "side_ratio", "planarity_mm", "width_mm", "area_m2",
+                "area_ratio"):
         assert all(key in fab["per_strip"][i] for i in ids)
     # the recorded width is in the artifact's unit; the metrics' in mm
-    assert fab["mean_width"] == pytest.approx(np.mean([r["width"] for r in art.records]))
-    assert fab["max_deviation"] == pytest.approx(
+    assert fab["mean_width_mm"] == pytest.approx(np.mean([r["width"] for r in art.records]))
+    assert fab["max_deviation_mm"] == pytest.approx(
         max(r["deviation"] * r["width"] for r in art.records), rel=1e-9)
     assert fab == art.metrics["fabrication"]          # recomputed: the recorded values
     # a closed ring: every strip has two neighbours, last and first included only if both
     # are in the artifact (strip v and v+1)
-    assert fab["max_seam_step"] is not None and fab["max_seam_step"] > 0
+    assert fab["max_seam_step_mm"] is not None and fab["max_seam_step_mm"] > 0
 
 
 def _figures(stem):
@@ -270,15 +272,15 @@ def test_report_colours_the_deviation_in_mm_and_marks_the_stepped_seams(bent_str
     fab = json.loads(dgpc("inspect", stem).stdout)["fabrication"]
     fig = figs = _figures(stem)["deviation"]
     bar = [a for a in figs.axes if a.get_xlabel() == "deviation from the net strip [mm]"]
-    assert len(bar) == 1 and bar[0].get_xlim()[1] == pytest.approx(fab["max_deviation"])
+    assert len(bar) == 1 and bar[0].get_xlim()[1] == pytest.approx(fab["max_deviation_mm"])
     view = [a for a in fig.axes if a.get_gid() == "view-axonometric"][0]
     stepped = [c for c in view.collections if c.get_gid() == "seams-stepped"][0]
     calm = [c for c in view.collections if c.get_gid() == "seams"][0]
-    mark = SEAM_STEP_MARK * fab["mean_width"]
-    assert fab["max_seam_step"] > mark                  # this ring's strips do step
+    mark = SEAM_STEP_MARK * fab["mean_width_mm"]
+    assert fab["max_seam_step_mm"] > mark               # this ring's strips do step
     assert len(stepped.get_segments()) > 0 and len(calm.get_segments()) > 0
     rows = read_strips(stem).records[0]["rows"]
-    seams = sum(1 for r in fab["per_strip"].values() if r["seam_step"][1] is not None)
+    seams = sum(1 for r in fab["per_strip"].values() if r["seam_step_mm"][1] is not None)
     assert len(stepped.get_segments()) + len(calm.get_segments()) == seams * (rows - 1)
 
 
@@ -301,28 +303,96 @@ def test_planarize_records_strips_that_build_the_design_and_warns_when_they_do_n
          "--span", 90, "--units", "m", "-o", tmp_path / "cyl")
     run = dgpc("planarize-strips", tmp_path / "cyl", "-o", tmp_path / "s")
     fab = read_strips(tmp_path / "s").metrics["fabrication"]
-    assert fab["max_end_gap"] <= 1e-9 and abs(fab["area_ratio"] - 1) <= 1e-12
-    assert fab["mean_width"] > 100                       # mm, from a net in m
+    assert fab["max_end_gap_mm"] <= 1e-9 and abs(fab["area_ratio"] - 1) <= 1e-12
+    assert fab["mean_width_mm"] > 100                    # mm, from a net in m
     assert "warning" not in run.stderr
     dgpc("init", "--surface", "revolution", "--profile", "catenoid", "--rows", 9, "--cols", 7,
          "--span", 120, "--twist", 0.3, "-o", tmp_path / "tw")
     run = dgpc("planarize-strips", tmp_path / "tw", "-o", tmp_path / "t")
     fab = read_strips(tmp_path / "t").metrics["fabrication"]
-    assert fab["max_end_gap"] <= 1e-9 and abs(fab["area_ratio"] - 1) > 1e-3
+    assert fab["max_end_gap_mm"] <= 1e-9 and abs(fab["area_ratio"] - 1) > 1e-3
     assert f"the strips' area is {100 * fab['area_ratio']:.2f} % of the net's" in run.stderr
 
 
 def test_report_tables_label_the_fabrication_metrics_in_mm_degrees_and_m2():
     from dgpc_cli.report.tables import metric_unit
 
-    units = {"fabrication.max_end_gap": "mm", "fabrication.per_strip.seam_step": "mm",
-             "fabrication.max_ruling_angle": "°", "fabrication.area": "m²",
+    units = {"fabrication.max_end_gap_mm": "mm", "fabrication.per_strip.seam_step_mm": "mm",
+             "fabrication.max_ruling_angle_deg": "°", "fabrication.area_m2": "m²",
              "fabrication.max_side_ratio": "", "fabrication.area_ratio": "",
-             "fabrication.max_deviation_relative": "", "fabrication.units.area": "",
-             "max_deviation": "× width", "per_strip.deviation": "× width",
-             "max_planarity": "× diagonal", "per_strip.planarity": "× diagonal",
-             "per_part.deviation_mm": "mm", "per_strip.width": "m"}
+             "fabrication.max_deviation_relative": "× width",
+             "max_deviation_relative": "× width", "per_strip.deviation_relative": "× width",
+             "max_planarity_diagonal_relative": "× diagonal",
+             "per_strip.planarity_diagonal_relative": "× diagonal",
+             "per_part.deviation_mm": "mm", "per_strip.width_mm": "mm",
+             "per_part.length_mm": "mm", "total_area_m2": "m²",
+             "max_straightness_relative": "× length", "max_congruence_error": ""}
     assert {k: metric_unit(k, "m") for k in units} == units
+
+
+def _metric_keys(doc, prefix=""):
+    """Every dotted key of an ``inspect`` document, per-item records' ids replaced by ``*``."""
+    out = set()
+    for key, value in doc.items():
+        name = f"{prefix}{key}"
+        if key in ("per_strip", "per_part", "classes") and isinstance(value, dict):
+            for record in value.values():
+                out |= _metric_keys(record, f"{name}.*.")
+        elif isinstance(value, dict):
+            out |= _metric_keys(value, f"{name}.")
+        else:
+            out.add(name)
+    return out
+
+
+#: Keys of ``inspect`` on strips and flat parts that are no length, angle or area (counts,
+#: ratios, ids, states); every other key names its unit.
+UNITLESS = {"n_strips", "polished", "flat_rows", "limited_rows", "side_ratio", "max_side_ratio",
+            "area_ratio", "area_reference", "n_parts", "n_classes", "max_strain", "strain",
+            "quantity", "representative", "members", "score_lines", "class", "part", "ratio",
+            "pinched", "max_congruence_error", "relative_error", "max_relative_error"}
+UNIT_ENDINGS = ("_mm", "_deg", "_m2", "_relative")
+
+
+def unit_clashes(*docs) -> list[str]:
+    """The keys of ``inspect`` documents ``docs`` whose unit their name does not say, and the
+    names (last part) that say different units in different places."""
+    from dgpc_cli.report.tables import metric_unit
+
+    bare, units = [], {}
+    for doc in docs:
+        for key in _metric_keys(doc):
+            last = key.rsplit(".", 1)[-1]
+            if last not in UNITLESS and not last.endswith(UNIT_ENDINGS):
+                bare.append(key)
+            units.setdefault(last, set()).add(metric_unit(key.replace("*", "x"), "m"))
+    return bare + [f"{last}: {sorted(u)}" for last, u in units.items() if len(u) > 1]
+
+
+def test_unit_clashes_finds_a_key_with_a_mixed_unit():
+    """Built to fail: a relative ``max_deviation`` beside a ``fabrication.max_deviation`` in
+    mm (the keys before they named their units), a bare length."""
+    doc = {"max_deviation": 0.01, "fabrication": {"max_deviation": 3.5},
+           "per_part": {"S-v00": {"length": 4.2}}}
+    assert sorted(unit_clashes(doc)) == ["fabrication.max_deviation", "max_deviation",
+                                         "per_part.*.length"]
+    assert unit_clashes({"max_deviation_relative": 0.01,
+                         "fabrication": {"max_deviation_relative": 0.01}}) == []
+    assert unit_clashes({"a": {"width_mm": 1.0}, "b": {"x": {"width_mm": 2.0}}}) == []
+
+
+def test_inspect_names_the_unit_of_every_strips_and_flat_metric(bent_strips):
+    """``inspect`` of strips (their own metrics and ``fabrication``) and of flat parts: every
+    length, angle and area names its unit, and no name means two units."""
+    strips = json.loads(dgpc("inspect", bent_strips / "strips").stdout)
+    flat = json.loads(dgpc("inspect", bent_strips / "flat").stdout)
+    assert unit_clashes(strips, flat) == []
+    assert "fabrication.max_deviation_mm" in _metric_keys(strips)
+    assert "max_deviation_relative" in _metric_keys(strips)
+    # the flat parts' lengths in mm whatever the artifact's unit
+    part = read_flat(bent_strips / "flat").parts[0]
+    assert flat["per_part"][part["id"]]["length_mm"] == pytest.approx(
+        part["length"] * mm_per_unit(read_flat(bent_strips / "flat").units))
 
 
 def _end_short(strips):
@@ -358,13 +428,13 @@ def _twisted(strips):
 #: metric -> (the change that fails it, the figure's key in the summary, its per-strip key,
 #: the bound it must exceed: the issue's, in mm or degrees, on strips 350 mm wide)
 FAILS = {
-    "end gap": (_end_short, "max_end_gap", "end_gaps", 1.0),
-    "deviation": (_lifted, "max_deviation", "deviation", 0.015 * W),
-    "seam step": (_stepped, "max_seam_step", "seam_step", 0.01 * W),
-    "seam gap": (_apart, "max_seam_gap", "seam_gap", 1.0),
-    "ruling angle": (_zigzag, "max_ruling_angle", "ruling_angle", 20.0),
+    "end gap": (_end_short, "max_end_gap_mm", "end_gaps_mm", 1.0),
+    "deviation": (_lifted, "max_deviation_mm", "deviation_mm", 0.015 * W),
+    "seam step": (_stepped, "max_seam_step_mm", "seam_step_mm", 0.01 * W),
+    "seam gap": (_apart, "max_seam_gap_mm", "seam_gap_mm", 1.0),
+    "ruling angle": (_zigzag, "max_ruling_angle_deg", "ruling_angle_deg", 20.0),
     "side ratio": (_pinched, "max_side_ratio", "side_ratio", 10.0),
-    "planarity": (_twisted, "max_planarity", "planarity", 1e-9 * W),
+    "planarity": (_twisted, "max_planarity_mm", "planarity_mm", 1e-9 * W),
 }
 
 

@@ -245,7 +245,7 @@ def _seams(f, strips):
     from dgpc_cli.strips.fabrication import measure_strips, summary
 
     s = summary([x.id for x in strips], measure_strips(f, [(x.v, x.A, x.B) for x in strips]))
-    return s["max_seam_step_relative"], s["max_deviation_relative"], s["max_ruling_angle"]
+    return s["max_seam_step_relative"], s["max_deviation_relative"], s["max_ruling_angle_deg"]
 
 
 def test_the_default_fit_holds_the_seams(facade):

@@ -119,8 +119,10 @@ def test_the_narrowest_part_is_measured_against_the_mean_width():
     parts = [{"id": "a", "length": 10.0, "area": 10.0, "width": [0.9, 1.1]},
              {"id": "b", "length": 10.0, "area": 2.0, "width": [0.1, 0.3]}]
     n = part_narrowness(parts)
-    assert n["mean_width"] == pytest.approx(0.6)
+    assert n["mean_width_mm"] == pytest.approx(0.6)
     assert n["narrowest"]["part"] == "b" and n["narrowest"]["ratio"] == pytest.approx(0.1 / 0.6)
+    assert n["narrowest"]["width_mm"] == pytest.approx(0.1)
+    assert part_narrowness(parts, "m")["narrowest"]["width_mm"] == pytest.approx(100.0)
     assert n["pinched"] == ["b"]
 
 

@@ -10,7 +10,7 @@ import random
 import ezdxf
 import numpy as np
 import pytest
-from cli_helpers import dgpc
+from cli_helpers import dgpc, revolution_strips
 from dxf_checks import END_MARK, check_cam_ready
 
 from dgpc_cli.io.atomic import write_files
@@ -44,10 +44,8 @@ def _stretched(strips, stretch_mm):
 def chain(tmp_path_factory):
     """A 9×7 cone net in metres (six congruent strips), its strips stretched by STRETCH_MM."""
     d = tmp_path_factory.mktemp("templates")
-    dgpc("init", "--surface", "revolution", "--profile", "cone", "--rows", 9, "--cols", 7,
-         "--span", 60, "--units", "m", "-o", d / "cone")
-    dgpc("planarize-strips", d / "cone", "-o", d / "s")
-    write_files(strips_files(d / "chain", _stretched(read_strips(d / "s"), STRETCH_MM)))
+    strips = revolution_strips(d, "cone", 9, 7, 60, "m", net="cone")
+    write_files(strips_files(d / "chain", _stretched(read_strips(strips), STRETCH_MM)))
     dgpc("unfold", d / "chain", "-o", d / "flat")
     return d
 
@@ -238,12 +236,17 @@ def test_nest_places_every_copy_labelled_with_its_own_id(chain, tmp_path):
     assert sorted(texts) == sorted(p["label"]["text"] for p in placements)
 
 
-def test_stock_length_in_the_strips_unit_warns_of_millimetres(chain, tmp_path):
-    res = dgpc("unfold", chain / "chain", "--stock-length", 2500, "-o", tmp_path / "f")
-    warnings = [line for line in res.stderr.splitlines() if "--stock-length" in line]
-    assert len(warnings) == 1
-    assert "--stock-length 2500 is in the strips' unit (m)" in warnings[0]
-    assert "did you mean 2500mm?" in warnings[0]
+def test_a_plain_stock_length_meant_in_millimetres_is_a_usage_error(chain, tmp_path):
+    """``--stock-length 2500`` on strips in metres is 2500 m, longer than every strip (4.5 m),
+    while 2500 mm would cut them: exit 2, one line naming both readings, nothing written."""
+    res = dgpc("unfold", chain / "chain", "--stock-length", 2500, "-o", tmp_path / "f",
+               expect=2)
+    err = [line for line in res.stderr.splitlines() if line.strip()]
+    assert len(err) == 1 and err[0].startswith("Error")
+    assert "--stock-length 2500 is in the strips' unit (m): 2500 m is longer than every " \
+           "strip (the longest is 4.47" in err[0]
+    assert " m); give the unit, e.g. 2500mm or 2.5m" in err[0]
+    assert list(tmp_path.iterdir()) == []
     # with its unit: cut into boards no longer than 2.5 m, no warning
     res = dgpc("unfold", chain / "chain", "--stock-length", "2500mm", "-o", tmp_path / "g")
     assert "--stock-length" not in res.stderr
@@ -251,6 +254,31 @@ def test_stock_length_in_the_strips_unit_warns_of_millimetres(chain, tmp_path):
     assert flat.parameters["stock_length"] == 2.5
     assert all(np.ptp(np.asarray(p["outline"])[:, 0]) <= 2.5 + 1e-9 for p in flat.parts)
     assert len(flat.parts) > 6
+
+
+@pytest.mark.parametrize("stock", ["5m", "6000mm", 9000])
+def test_a_stock_length_longer_than_every_strip_only_warns(chain, tmp_path, stock):
+    """Longer than every strip with its unit, or a plain number too long in mm as well
+    (9000 mm > 4.5 m): nothing to cut, one warning, each strip one board."""
+    res = dgpc("unfold", chain / "chain", "--stock-length", stock, "-o", tmp_path / "f")
+    warnings = [line for line in res.stderr.splitlines() if "--stock-length" in line]
+    assert len(warnings) == 1 and "nothing is cut into boards" in warnings[0]
+    parts = read_flat(tmp_path / "f").parts
+    assert sorted(p["strip"] for p in parts) == list(range(6))         # one board per strip
+
+
+def test_a_plain_stagger_meant_in_millimetres_is_a_usage_error(chain, tmp_path):
+    """``--stagger 400`` with 2 m stock on strips in metres: 400 m, longer than the stock,
+    where 400 mm would do: exit 2, nothing written; ``400mm`` is fine."""
+    res = dgpc("unfold", chain / "chain", "--stock-length", "2m", "--stagger", 400,
+               "-o", tmp_path / "f", expect=2)
+    err = [line for line in res.stderr.splitlines() if line.strip()]
+    assert len(err) == 1 and "--stagger 400 is in the strips' unit (m)" in err[0]
+    assert "400mm or 0.4m" in err[0]
+    assert list(tmp_path.iterdir()) == []
+    dgpc("unfold", chain / "chain", "--stock-length", "2m", "--stagger", "400mm",
+         "-o", tmp_path / "g")
+    assert read_flat(tmp_path / "g").parameters["stagger"] == pytest.approx(0.4)
 
 
 def test_a_part_under_10_mm_warns(tmp_path):

@@ -70,6 +70,27 @@ def test_init_records_the_unit_and_every_stage_carries_it(tmp_path):
         assert json.loads((tmp_path / f"{stem}.json").read_text())["schema_version"] == 2
 
 
+def test_a_plain_lath_gap_meant_in_millimetres_is_a_usage_error(tmp_path):
+    """``laths --gap 5`` on nets in metres (edges of 0.1 m) is a 5 m gap, where 5 mm was
+    likely meant: exit 2, one line, nothing written; ``5mm`` and a plain 0.01 are fine."""
+    u, v = np.meshgrid(np.linspace(0.0, 0.5, 6), np.linspace(0.0, 0.5, 6), indexing="ij")
+    grid = np.stack([u, v, np.zeros_like(u)], axis=-1)
+    write_net(tmp_path / "along", NetArtifact(f=grid, units="m"))
+    write_net(tmp_path / "across", NetArtifact(f=np.transpose(grid, (1, 0, 2)), units="m"))
+    before = sorted(p.name for p in tmp_path.iterdir())
+    res = dgpc("laths", tmp_path / "along", tmp_path / "across", "--gap", 5, "-o",
+               tmp_path / "l", expect=2)
+    err = [line for line in res.stderr.splitlines() if line.strip()]
+    assert len(err) == 1 and "--gap 5 is in the nets' unit (m): 5 m is longer than the " \
+        "nets' mean edge (0.1 m); give the unit, e.g. 5mm or 0.005m" in err[0]
+    assert _no_output(tmp_path, before)
+    for gap in ("5mm", 0.01):
+        dgpc("laths", tmp_path / "along", tmp_path / "across", "--gap", gap, "-o",
+             tmp_path / "l", "--force")
+        doc = json.loads((tmp_path / "l.json").read_text())
+        assert doc["parameters"]["gap"] == pytest.approx(0.005 if gap == "5mm" else 0.01)
+
+
 def _no_output(folder, before):
     return sorted(p.name for p in folder.iterdir()) == before
 

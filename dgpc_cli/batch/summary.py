@@ -34,7 +34,7 @@ KEY_METRICS = {
     "net": {"R": "R", "max_strain": "strain.max", "gpc_angle_defect_max":
             "gpc_angle_defect_max", "pleat_max": "pleat_max"},
     "base": {"R": "R"},
-    "strips": {"max_planarity": "max_planarity"},
+    "strips": {"max_planarity_diagonal_relative": "max_planarity_diagonal_relative"},
     "flat": {"n_parts": "n_parts", "n_classes": "n_classes",
              "max_congruence_error": "max_congruence_error"},
     "mold": {"isometry_error_max": "isometry_error_max", "pieces": "pieces",

@@ -35,6 +35,7 @@ from dgpc_cli.stages.extract_mold import (
     DEFAULT_TOL_FACTOR,
     LAMBDA_CHOICES,
     extract_mold,
+    max_length_slip,
 )
 from dgpc_cli.stages.soundness import require_sound_net
 
@@ -117,11 +118,15 @@ def extract_mold_cmd(ctx, nets, segments, lam, panel_size, flat_tol, mold_max_le
         require_sound_net(net.f, name)
     unit = same_units([(name, net.units) for name, net in loaded])
     check_units(units_check, unit, loaded[0][0])
+    given = mold_max_length
     if mold_max_length is not None:
         mold_max_length = mold_max_length.in_units(unit, unit)
     mold = extract_mold([(name, net.f) for name, net in loaded], segments=segments, lam=lam,
                         panel_size=panel_size, flat_tol=flat_tol, max_length=mold_max_length,
                         tol=tol, max_strain=max_strain)
+    slip = max_length_slip(mold, given, unit)
+    if slip is not None:
+        raise click.UsageError(slip)
     if show_progress(ctx):
         click.echo(mold.choice_line(unit), err=True)
     folder = paths["json"].resolve().parent

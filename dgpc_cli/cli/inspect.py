@@ -52,7 +52,7 @@ def _inspect_flat(json_path: Path, **_) -> dict:
     from dgpc_cli.stages.unfold import flat_metrics
 
     flat = read_flat(json_path)
-    return flat_metrics(flat.parts, flat.classes)
+    return flat_metrics(flat.parts, flat.classes, flat.units)
 
 
 INSPECTORS.update(strips=_inspect_strips, flat=_inspect_flat)

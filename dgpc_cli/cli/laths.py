@@ -18,7 +18,7 @@ from dgpc_cli.io.laths import laths_files
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.units import same_units
-from dgpc_cli.stages.laths import GAP, crossing_gap, gridshell
+from dgpc_cli.stages.laths import GAP, crossing_gap, gap_slip, gridshell
 from dgpc_cli.stages.soundness import require_sound_net
 
 log = logging.getLogger(__name__)
@@ -61,6 +61,9 @@ def laths(net_a, net_b, gap, output, force, fmt):
     ref_a, ref_b = a.data.get("reference"), b.data.get("reference")
     if ref_a and ref_b and ref_a.get("sha256") != ref_b.get("sha256"):
         log.warning("%s and %s record different references", net_a, net_b)
+    slip = gap_slip(a.f, b.f, gap, units)
+    if slip is not None:
+        raise click.UsageError(slip)
     gap = crossing_gap(a.f, b.f, None if gap is None else gap.in_units(units, units))
     laths_a, laths_b, crossings = gridshell(a.f, b.f, gap=gap)
     if len(crossings.a) == 0:

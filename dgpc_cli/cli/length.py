@@ -51,6 +51,23 @@ class Length:
         """The length in ``units`` (``artifact_units``: the unit of a plain number)."""
         return self.to_mm(artifact_units) / mm_per_unit(units)
 
+    def unit_slip(self, option: str, artifact_units: str, limit_mm: float, what: str,
+                  whose: str = "the artifact's") -> str | None:
+        """The one-line usage error for a plain number that is in ``artifact_units`` (``whose``
+        unit, e.g. "the strips'") but was likely meant in millimetres (issue: no silent unit
+        traps): longer than ``limit_mm`` (``what`` it is compared with, e.g. "every strip (the
+        longest is 6.06 m)") while read as mm it would not be. None when the length has a
+        unit, a plain number is not in the artifact's unit, the artifact is in mm, or neither
+        reading is plausible."""
+        if self.unit is not None or self.plain is not None or artifact_units == "mm":
+            return None
+        if not self.to_mm(artifact_units) > limit_mm or self.value > limit_mm:
+            return None
+        k = mm_per_unit(artifact_units)
+        return (f"{option} {self.text()} is in {whose} unit ({artifact_units}): {self.value:g} "
+                f"{artifact_units} is longer than {what}; give the unit, e.g. {self.value:g}mm "
+                f"or {self.value / k:g}{artifact_units}")
+
     def text(self) -> str:
         """The length as typed back, with its unit where one was given: ``0.5mm``, ``2500``."""
         return f"{self.value:g}{self.unit or ''}"

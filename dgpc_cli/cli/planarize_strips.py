@@ -153,7 +153,7 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
                     **({"template_rejected": fallback} if fallback else {})},
         template=template,
         inputs={"net": file_input(json_path, out_json.resolve().parent)},
-        metrics={**strips_metrics(strips),
+        metrics={**strips_metrics(records, net.units),
                  "fabrication": fabrication_metrics(net.f, net.units, records,
                                                     [(s.A, s.B) for s in strips], outline)},
         status={"polished": len(polished), "polish_not_converged": failed,
@@ -162,11 +162,13 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
     click.echo(str(out_json))
     for note in fabrication_warnings(art.metrics["fabrication"]):
         log.warning("%s: %s", out_json, note)
-    log.info("%s: %d strips, max planarity %.3g, max deviation %.3g of the width", out_json,
-             len(strips), art.metrics["max_planarity"], art.metrics["max_deviation"])
+    log.info("%s: %d strips, max planarity %.3g of the diagonal, max deviation %.3g of the "
+             "width", out_json, len(strips), art.metrics["max_planarity_diagonal_relative"],
+             art.metrics["max_deviation_relative"])
     if failed:
         raise NotConverged(f"the polish of {', '.join(failed)} did not reach its tolerance "
-                           f"(max planarity {art.metrics['max_planarity']:.3g}); written anyway",
+                           f"(max planarity {art.metrics['max_planarity_diagonal_relative']:.3g}"
+                           " of the diagonal); written anyway",
                            source=out_json)
     if crossed:
         raise NotConverged(f"the rulings of {', '.join(crossed)} cross (folded quads, the "

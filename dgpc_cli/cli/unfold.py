@@ -32,6 +32,7 @@ from dgpc_cli.stages.unfold import (
     scale_warnings,
     template_dxfs,
     unfold_strips,
+    unit_slip,
 )
 
 log = logging.getLogger(__name__)
@@ -99,6 +100,9 @@ def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_st
     stagger_mm = (None if stock_length is None else stagger.to_mm(units) if stagger is not None
                   else STAGGER_FRACTION * stock_mm)
     geometry = [(to_mm(A, units), to_mm(B, units)) for A, B in strips.geometry]
+    slip = unit_slip(geometry, units, stock_length, stagger)
+    if slip is not None:
+        raise click.UsageError(slip)
     parts, classes, joints = unfold_strips(
         geometry, [r["id"] for r in strips.records], [r["v"] for r in strips.records],
         congruence_tol=congruence_tol.to_mm(units), mirror_ok=mirror_ok,
@@ -121,6 +125,6 @@ def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_st
                     "stock_length": None if stock_mm is None else stock_mm / mm_per_unit(units),
                     "stagger": None if stagger_mm is None else stagger_mm / mm_per_unit(units)},
         inputs={"strips": file_input(json_path, out_json.resolve().parent)},
-        metrics=flat_metrics(parts, classes), status={"n_classes": len(classes)})
+        metrics=flat_metrics(parts, classes, units), status={"n_classes": len(classes)})
     write_files(with_3dm(flat_files(output, art), output, fmt), force=force)
     click.echo(str(out_json))

@@ -28,8 +28,9 @@ FABRICATION = {
     "u_spread_max", "pleat_max", "crease_max", "parallel_departure", "mold_panel_error",
     "panel_error_against", "handle_miss", "strain",
     # strips, flat parts
-    "max_planarity", "max_deviation", "max_congruence_error", "max_strain", "max_straightness",
-    "n_classes", "n_parts", "classes", "per_part", "per_strip", "total_area", "total_length",
+    "max_planarity_diagonal_relative", "max_deviation_relative", "max_congruence_error",
+    "max_congruence_deviation_mm", "max_strain", "max_straightness_relative", "n_classes",
+    "n_parts", "classes", "per_part", "per_strip", "total_area_m2", "total_length_mm",
     "fabrication",
     # molds
     "pieces", "panels", "panels_flat", "panels_curved", "isometry_error_max",
@@ -44,26 +45,21 @@ ITEMS = {"per_part": "per part", "per_strip": "per strip", "classes": "congruenc
          "fabrication.per_strip": "fabrication per strip"}
 #: Lists of numbers longer than this are summarised (count, min, max) rather than listed.
 LIST_MAX = 12
-#: Metrics (last part of the dotted key) that are lengths in the artifact's unit (a strip's
-#: ``deviation`` is not: it is relative to the strip's width).
+#: Metrics (last part of the dotted key) that are lengths in the artifact's unit; the strips'
+#: and flat parts' metrics name their unit instead (``_mm``, ``_deg``, ``_m2``, ``_relative``).
 LENGTHS = {"length", "width", "height", "profile_length", "radius_max", "radius_min",
-           "total_length", "length_total", "length_max", "crossing_gap_max", "diagonal",
+           "length_total", "length_max", "crossing_gap_max", "diagonal",
            "jacobi_residual_max", "vertex_distance_max", "mean_radius", "mean_abs", "max_mad",
            "net_to_reference_max", "net_to_reference_mean", "reference_to_net_max",
-           "reference_to_net_mean", "straightness",
-           "max_straightness", "mad", "meridian_length"}
+           "reference_to_net_mean", "mad", "meridian_length"}
 #: ... that are areas.
-AREAS = {"total_area", "covered_area", "reference_area", "area"}
-#: Units of the strips' ``fabrication`` metrics (mm, degrees and m² whatever the artifact's
-#: unit), by the last part of the key: angles, areas; the other keys without ``ratio`` or
-#: ``relative`` in them are lengths.
-FABRICATION_UNITS = {"ruling_angle": "°", "max_ruling_angle": "°", "area": "m²",
-                     "reference_area": "m²"}
-#: Metrics of a strips artifact that are relative (planarize-strips): the deviation from the
-#: net strip over the strip's width, the planarity defect over the quad's mean diagonal (their
-#: lengths in mm are the ``fabrication`` metrics').
-RELATIVE = {"deviation": "× width", "max_deviation": "× width",
-            "planarity": "× diagonal", "max_planarity": "× diagonal"}
+AREAS = {"covered_area", "reference_area", "area"}
+#: Metrics relative to a length other than the strip's width (``_relative`` alone: a share
+#: of the (mean) strip width, or a plain ratio): the planarity defect over the quad's mean
+#: diagonal, the straightness of a developed geodesic over its length.
+RELATIVE = {"_diagonal_relative": "× diagonal", "straightness_relative": "× length",
+            "deviation_relative": "× width", "planarity_relative": "× width",
+            "seam_step_relative": "× width"}
 #: Heads whose min / max / mean are lengths.
 LENGTH_STATS = {"edges", "hausdorff", "parallel_departure", "handle_miss"}
 
@@ -81,21 +77,15 @@ def metric_unit(key: str, units: str) -> str:
     """The unit of the metric at the dotted ``key`` (``""``: a count, a ratio, an index …)."""
     parts = key.split(".")
     head, last = parts[0], parts[-1].split("[")[0]
-    if head == "fabrication":
-        if parts[1] == "units":
-            return ""
-        if last in FABRICATION_UNITS:
-            return FABRICATION_UNITS[last]
-        plain = "ratio" in last or "relative" in last or last == "area_reference"
-        return "" if plain else "mm"
+    relative = next((unit for end, unit in RELATIVE.items() if last.endswith(end)), None)
+    if relative is not None:
+        return relative
     if last in AREAS:
         return f"{units}²"
-    if last in RELATIVE and head in ("per_strip", *RELATIVE):
-        return RELATIVE[last]
     if head == "gaussian_curvature":
         return f"1/{units}²"
     if last in ("relative", "relative_mad", "max_relative_mad", "max_mad_over_radius",
-                "relative_error", "max_relative_error", "min_ratio"):
+                "relative_error", "max_relative_error", "min_ratio") or last.endswith("_relative"):
         return ""
     if (last in LENGTHS or (head in LENGTH_STATS and last in ("min", "max", "mean"))
             or (head == "clairaut" and last == "mean")):
@@ -106,6 +96,8 @@ def metric_unit(key: str, units: str) -> str:
         return "°"
     if last.endswith("_mm"):
         return "mm"
+    if last.endswith("_m2"):
+        return "m²"
     if last in ("pleat_max", "crease_max"):
         return "mean edges"
     return ""

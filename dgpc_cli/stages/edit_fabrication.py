@@ -8,7 +8,7 @@ import numpy as np
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.units import from_mm
 from dgpc_cli.stages.extract_mold import extract_mold
-from dgpc_cli.stages.planarize import planarize_strips, strips_metrics
+from dgpc_cli.stages.planarize import planarize_strips
 from dgpc_cli.stages.unfold import unfold_strips
 
 
@@ -29,7 +29,7 @@ def fabrication_figures(f_mm: np.ndarray, units: str) -> dict:
             "strips": len(strips), "classes": len(classes),
             "quantities": [c["quantity"] for c in classes],
             "class_deviation": max(c["max_relative_error"] for c in classes),
-            "strip_deviation": strips_metrics(strips)["max_deviation"]}
+            "strip_deviation": max(s.deviation for s in strips)}
     except DgpcError as err:
         out["strips"] = {"error": str(err)}
     try:

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.units import mm_per_unit
 from dgpc_cli.mold.panels import (
     Piece,
     block_max,
@@ -248,6 +249,19 @@ def extract_mold(nets: list[tuple[str, np.ndarray]], *, segments: float | None =
     sector = max(float(np.radians(np.diff(p.angles, axis=1)).max()) for p in per_net)
     return Mold(meridian=mer, nets=per_net, rows=rows, pieces=pieces,
                 piece_of_row=piece_of_row, sector_angle=sector, panel_size=K, choice=choice)
+
+
+def max_length_slip(mold: Mold, max_length, units: str) -> str | None:
+    """The usage error for a plain ``--mold-max-length`` (a
+    :class:`~dgpc_cli.cli.length.Length` or None) in the nets' unit ``units`` longer than the
+    whole mold along its meridian, that was likely meant in mm
+    (:meth:`~dgpc_cli.cli.length.Length.unit_slip`), if any."""
+    if max_length is None:
+        return None
+    length = float(np.sum(mold.meridian.l))
+    return max_length.unit_slip("--mold-max-length", units, length * mm_per_unit(units),
+                                f"the mold ({length:.4g} {units} along the meridian)",
+                                "the nets'")
 
 
 def _check_panels(per_net: list[NetPanels], row_starts: np.ndarray, K: int, max_strain: float,

@@ -140,6 +140,20 @@ def crossing_gap(f_a: np.ndarray, f_b: np.ndarray, gap: float | None = None) -> 
     return float(GAP * 0.5 * (mean_edge_length(f_a) + mean_edge_length(f_b)))
 
 
+def gap_slip(f_a: np.ndarray, f_b: np.ndarray, gap, units: str) -> str | None:
+    """The usage error for a plain ``--gap`` (a :class:`~dgpc_cli.cli.length.Length` or None)
+    in the nets' unit ``units`` longer than the nets' mean edge, that was likely meant in mm
+    (:meth:`~dgpc_cli.cli.length.Length.unit_slip`), if any."""
+    from dgpc_cli.core.problem import mean_edge_length
+    from dgpc_cli.io.units import mm_per_unit
+
+    if gap is None:
+        return None
+    edge = 0.5 * (mean_edge_length(f_a) + mean_edge_length(f_b))
+    return gap.unit_slip("--gap", units, edge * mm_per_unit(units),
+                         f"the nets' mean edge ({edge:.4g} {units})", "the nets'")
+
+
 def gridshell(f_a: np.ndarray, f_b: np.ndarray, *, gap: float | None = None):
     """Laths of the nets ``f_a``, ``f_b`` (families A and B) and their crossings.
 

@@ -346,17 +346,24 @@ def template_strips(f: np.ndarray, strips: list[PlanarStrip], units: str, *,
     return out, record
 
 
-def strips_metrics(strips: list[PlanarStrip]) -> dict:
-    """Metrics of SPEC §7 for a strips artifact: planarity and deviation per strip and worst."""
+def strips_metrics(records: list[dict], units: str = "mm") -> dict:
+    """Metrics of SPEC §7 for a strips artifact from its strips' records
+    (:meth:`PlanarStrip.record`, in ``units``): planarity and deviation per strip and worst,
+    each key named with its unit: ``deviation_relative`` the largest distance from the net
+    strip over the strip's width, ``planarity_diagonal_relative`` the largest diagonal distance
+    over the quad's mean diagonal, ``width_mm`` (their lengths in mm are in ``fabrication``)."""
+    k = mm_per_unit(units)
     return {
-        "n_strips": len(strips),
-        "max_planarity": max(s.planarity for s in strips),
-        "max_deviation": max(s.deviation for s in strips),
-        "polished": sum(bool(s.polish.get("applied")) for s in strips),
-        "per_strip": {s.id: {"planarity": s.planarity, "deviation": s.deviation,
-                             "width": s.width, "flat_rows": int(np.sum(s.flat)),
-                             "limited_rows": int(np.sum(s.limited))}
-                      for s in strips},
+        "n_strips": len(records),
+        "max_planarity_diagonal_relative": max(r["planarity"] for r in records),
+        "max_deviation_relative": max(r["deviation"] for r in records),
+        "polished": sum(bool(r["polish"].get("applied")) for r in records),
+        "per_strip": {r["id"]: {"planarity_diagonal_relative": r["planarity"],
+                                "deviation_relative": r["deviation"],
+                                "width_mm": r["width"] * k,
+                                "flat_rows": int(np.sum(r["flat_rows"])),
+                                "limited_rows": int(np.sum(r["limited_rows"]))}
+                      for r in records},
     }
 
 

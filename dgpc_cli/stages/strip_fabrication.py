@@ -1,7 +1,8 @@
 """Fabrication metrics of a strips artifact (SPEC §6 planarize-strips, §7; paper §6.2.4): end
 gaps, deviation from the net, seams, ruling turns, side ratios, planarity and areas of its
-strips (``strips.fabrication``), in mm, degrees and m², for ``planarize-strips`` to record and
-``dgpc inspect`` to recompute from the artifact's geometry and its net."""
+strips (``strips.fabrication``), in mm, degrees and m², each key named with its unit, for
+``planarize-strips`` to record and ``dgpc inspect`` to recompute from the artifact's geometry
+and its net."""
 
 from __future__ import annotations
 
@@ -34,23 +35,23 @@ def fabrication_warnings(fab: dict) -> list[str]:
     gaps above :data:`END_GAP_WARN`, a deviation or seam step beyond :data:`DEVIATION_WARN` or
     :data:`SEAM_STEP_WARN` of the mean width, an area off by more than :data:`AREA_WARN`."""
     out = []
-    gap, ratio = fab["max_end_gap"], fab["area_ratio"]
+    gap, ratio = fab["max_end_gap_mm"], fab["area_ratio"]
     if gap is not None and gap == gap and gap > END_GAP_WARN:
         # a strip dropped by the trim (wholly beyond the outline) has no end gaps
         worst = max(fab["per_strip"], key=lambda i: max(
-            (abs(g) for g in fab["per_strip"][i]["end_gaps"] if g is not None), default=-1.0))
+            (abs(g) for g in fab["per_strip"][i]["end_gaps_mm"] if g is not None), default=-1.0))
         out.append(f"strips end up to {gap:.4g} mm from the net's edge rows ({worst}): built "
                    "as cut, the design has gaps along its edges")
     for key, limit, what in (("deviation", DEVIATION_WARN, "deviate from the net"),
                              ("seam_step", SEAM_STEP_WARN, "step at their seams")):
         worst = fab.get(f"max_{key}_relative")
         if worst is not None and worst == worst and worst > limit:
-            out.append(f"the strips {what} by up to {fab[f'max_{key}']:.3g} mm "
+            out.append(f"the strips {what} by up to {fab[f'max_{key}_mm']:.3g} mm "
                        f"({100 * worst:.2f} % of the mean strip width, target "
                        f"{100 * limit:g} %)")
     if ratio is not None and abs(ratio - 1.0) > AREA_WARN:
         out.append(f"the strips' area is {100 * ratio:.2f} % of the {fab['area_reference']}'s "
-                   f"({fab['area']:.4g} of {fab['reference_area']:.4g} m²)")
+                   f"({fab['area_m2']:.4g} of {fab['reference_area_m2']:.4g} m²)")
     return out
 
 
@@ -110,15 +111,18 @@ def recorded_net(art, json_path: Path):
 
 
 def inspect_strips(json_path: Path) -> dict:
-    """The metrics of the strips artifact ``json_path``, with ``fabrication`` recomputed from
-    its geometry and the net it records (the recorded one when that net is not there or
-    changed, with a warning)."""
+    """The metrics of the strips artifact ``json_path``: its strips' own from their records,
+    ``fabrication`` recomputed from its geometry and the net it records (the recorded one when
+    that net is not there or changed, with a warning)."""
     from dgpc_cli.core.reference import ReferenceSurface
     from dgpc_cli.io.strips import read_strips
     from dgpc_cli.stages.inspect import recorded_reference
+    from dgpc_cli.stages.planarize import strips_metrics
 
     art = read_strips(json_path)
-    metrics = dict(art.metrics)
+    metrics = strips_metrics(art.records, art.units)
+    if "fabrication" in art.metrics:
+        metrics["fabrication"] = art.metrics["fabrication"]
     found = recorded_net(art, json_path)
     if found is None:
         return metrics

@@ -289,12 +289,38 @@ def class_record(cid: str, representative: str, members: list[str], errors: list
 MIN_PART_MM = 10.0
 
 
+def longest_strip_mm(geometry: list) -> float:
+    """The length of the longest of the strips ``geometry`` (mm): the mean of its two
+    boundary polylines' lengths."""
+    return max(0.5 * (float(cumulative(np.asarray(A, float))[-1]) +
+                      float(cumulative(np.asarray(B, float))[-1])) for A, B in geometry)
+
+
+def unit_slip(geometry: list, units: str, stock_length, stagger) -> str | None:
+    """The usage error for a plain ``--stock-length`` (longer than every strip of
+    ``geometry``, mm) or else ``--stagger`` (longer than the stock length) in the strips'
+    unit that was likely meant in mm (:meth:`~dgpc_cli.cli.length.Length.unit_slip`; both
+    lengths ``Length`` or None), if any."""
+    if stock_length is None:
+        return None
+    longest = longest_strip_mm(geometry)
+    k = mm_per_unit(units)
+    slip = stock_length.unit_slip("--stock-length", units, longest,
+                                  f"every strip (the longest is {longest / k:.4g} {units})",
+                                  "the strips'")
+    if slip is None and stagger is not None:
+        stock = stock_length.to_mm(units)
+        slip = stagger.unit_slip("--stagger", units, stock,
+                                 f"the stock length ({stock / k:.4g} {units})", "the strips'")
+    return slip
+
+
 def scale_warnings(parts: list[dict], geometry: list, units: str, stock_length) -> list[str]:
     """One-line warnings on an implausible scale (issue: no silent unit traps): a part
     shorter than :data:`MIN_PART_MM`, or a ``stock_length`` (a
-    :class:`~dgpc_cli.cli.length.Length`, or None) longer than every strip, each naming the
-    likely fix. ``parts`` are the records of :func:`unfold_strips` and ``geometry`` the strips,
-    both in mm."""
+    :class:`~dgpc_cli.cli.length.Length`, or None) longer than every strip: nothing to cut (a
+    plain number that read as mm would cut is a usage error, :func:`unit_slip`). ``parts``
+    are the records of :func:`unfold_strips` and ``geometry`` the strips, both in mm."""
     out = []
     shortest = min(parts, key=lambda p: p["length"])
     if shortest["length"] < MIN_PART_MM:
@@ -302,18 +328,13 @@ def scale_warnings(parts: list[dict], geometry: list, units: str, stock_length) 
                    f"{MIN_PART_MM:g} mm: the strips are in {units}; if the design is in metres, "
                    "make the net with `init --units m`")
     if stock_length is not None:
-        longest = max(0.5 * (float(cumulative(np.asarray(A))[-1]) +
-                             float(cumulative(np.asarray(B))[-1])) for A, B in geometry)
-        stock = stock_length.to_mm(units)
-        if stock > longest:
-            text = f"--stock-length {stock_length.text()}"
-            where = (f" is in the strips' unit ({units})" if stock_length.unit is None
+        longest = longest_strip_mm(geometry)
+        if stock_length.to_mm(units) > longest:
+            where = (f" is in the strips' unit ({units})," if stock_length.unit is None
                      else "")
-            hint = (f": did you mean {stock_length.value:g}mm?"
-                    if stock_length.unit is None and units != "mm" else
-                    ": nothing is cut into boards")
-            out.append(f"{text}{where}, longer than every strip (the longest is "
-                       f"{longest / mm_per_unit(units):.4g} {units}){hint}")
+            out.append(f"--stock-length {stock_length.text()}{where} longer than every strip "
+                       f"(the longest is {longest / mm_per_unit(units):.4g} {units}): nothing "
+                       "is cut into boards")
     return out
 
 
@@ -423,17 +444,19 @@ def _unfold_trimmed(geometry, devs, ids, columns, trims, congruence_tol, mirror_
     return parts, classes, []
 
 
-def part_narrowness(parts: list[dict]) -> dict:
+def part_narrowness(parts: list[dict], units: str = "mm") -> dict:
     """How narrow the parts get (issue: no part narrower than a quarter of the mean width):
-    ``mean_width`` (their total area over their total length), the ``narrowest`` part (id,
-    least width, ``ratio`` to the mean width) and the parts ``pinched`` below
-    :data:`~dgpc_cli.strips.pinch.PINCH` of it."""
+    ``mean_width_mm`` (their total area over their total length), the ``narrowest`` part (id,
+    least width ``width_mm``, ``ratio`` to the mean width) and the parts ``pinched`` below
+    :data:`~dgpc_cli.strips.pinch.PINCH` of it; ``parts`` in ``units``."""
+    k = mm_per_unit(units)
     length = float(np.sum([p["length"] for p in parts]))
     mean = float(np.sum([p["area"] for p in parts])) / length if length > 0 else 0.0
     least = min(parts, key=lambda p: p["width"][0])
     ratio = least["width"][0] / mean if mean > 0 else 0.0
-    return {"mean_width": mean,
-            "narrowest": {"part": least["id"], "width": least["width"][0], "ratio": ratio},
+    return {"mean_width_mm": mean * k,
+            "narrowest": {"part": least["id"], "width_mm": least["width"][0] * k,
+                          "ratio": ratio},
             "pinched": [p["id"] for p in parts if p["width"][0] < PINCH * mean]}
 
 
@@ -446,18 +469,23 @@ def narrow_warnings(parts: list[dict], units: str) -> list[str]:
     k = mm_per_unit(units)
     names = ", ".join(n["pinched"][:6]) + (", ..." if len(n["pinched"]) > 6 else "")
     return [f"{len(n['pinched'])} part(s) narrower than {PINCH:g} of the mean width "
-            f"{n['mean_width'] / k:.4g} {units} ({names}; the narrowest "
-            f"{n['narrowest']['width'] / k:.4g} {units}): they pinch where the net's geodesics "
-            "converge; `planarize-strips --trim` cuts such ends off"]
+            f"{n['mean_width_mm'] / k:.4g} {units} ({names}; the narrowest "
+            f"{n['narrowest']['width_mm'] / k:.4g} {units}): they pinch where the net's "
+            "geodesics converge; `planarize-strips --trim` cuts such ends off"]
 
 
-def flat_metrics(parts: list[dict], classes: list[dict]) -> dict:
-    """The metrics of a flat artifact recomputed from its records (for ``dgpc inspect``)."""
+def flat_metrics(parts: list[dict], classes: list[dict], units: str) -> dict:
+    """The metrics of a flat artifact recomputed from its records (``parts`` in ``units``),
+    each key named with its unit: lengths in mm (``_mm``), areas in m² (``_m2``), the
+    straightness of the developed geodesics (largest distance from their chord over their
+    length) and the congruence error (over the part's length) ``relative``; strain
+    dimensionless."""
+    k = mm_per_unit(units)
     return {
-        **part_narrowness(parts),
+        **part_narrowness(parts, units),
         "n_parts": len(parts), "n_classes": len(classes),
         "max_strain": max(p["strain"] for p in parts),
-        "max_straightness": float(max(max(p["straightness"]) for p in parts)),
+        "max_straightness_relative": float(max(max(p["straightness"]) for p in parts)),
         "max_congruence_error": max(c["max_relative_error"] for c in classes),
         "max_congruence_deviation_mm": max(c.get("max_deviation_mm", 0.0) for c in classes),
         "classes": {c["id"]: {"quantity": c["quantity"], "representative": c["representative"],
@@ -466,13 +494,14 @@ def flat_metrics(parts: list[dict], classes: list[dict]) -> dict:
                               "max_deviation_mm": c.get("max_deviation_mm", 0.0),
                               "score_lines": c.get("score_lines", "shared")}
                     for c in classes},
-        "per_part": {p["id"]: {"strain": p["strain"], "straightness": p["straightness"],
-                               "length": p["length"], "class": p["class"],
+        "per_part": {p["id"]: {"strain": p["strain"],
+                               "straightness_relative": p["straightness"],
+                               "length_mm": p["length"] * k, "class": p["class"],
                                "relative_error": p["alignment"]["relative_error"],
                                "deviation_mm": p["alignment"].get("deviation_mm", 0.0)}
                      for p in parts},
-        "total_area": float(np.sum([p["area"] for p in parts])),
-        "total_length": float(np.sum([p["length"] for p in parts])),
+        "total_area_m2": float(np.sum([p["area"] for p in parts])) * k * k * 1e-6,
+        "total_length_mm": float(np.sum([p["length"] for p in parts])) * k,
     }
 
 

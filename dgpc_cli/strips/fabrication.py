@@ -242,18 +242,20 @@ def summary(ids: list[str], measures: list[StripMeasures], *, mm_per_unit: float
             part_areas: dict | None = None, part_gaps: dict | None = None,
             outline_area: float | None = None) -> dict:
     """The JSON record of the measures: per strip (keyed by ``ids``) and the worst over the
-    strips, lengths in mm (the measures' unit times ``mm_per_unit``), angles in degrees,
-    areas in m².
+    strips, each key named with its unit: lengths in mm (``_mm``: the measures' unit times
+    ``mm_per_unit``), angles in degrees (``_deg``), areas in m² (``_m2``), shares of the mean
+    strip width ``_relative``; ratios (``side_ratio``, ``area_ratio``) have none.
 
-    Per strip: ``end_gaps`` [start, end] (each the larger of the two geodesics' by magnitude,
-    signed as :func:`end_gaps`), ``deviation``, ``planarity``, ``seam_step`` and ``seam_gap``
-    [to strip v−1, to strip v+1] (null without that neighbour), ``ruling_angle`` (the largest
-    between neighbouring rulings), ``side_ratio`` (the largest longest-over-shortest side),
-    ``width``, ``area`` and ``area_ratio`` (over the net strip's); non-finite values (a
-    collapsed quad side's ratio, a missing measure) become null in the JSON. For a trimmed strip
-    ``part_gaps[id]`` (its parts' :func:`part_end_gaps`) replace the end gaps and
-    ``part_areas[id]`` (its parts' areas) the area; the ratio is then taken over
-    ``outline_area`` (the reference's, for all strips together) rather than the net's.
+    Per strip: ``end_gaps_mm`` [start, end] (each the larger of the two geodesics' by
+    magnitude, signed as :func:`end_gaps`), ``deviation_mm``, ``planarity_mm``,
+    ``seam_step_mm`` and ``seam_gap_mm`` [to strip v−1, to strip v+1] (null without that
+    neighbour), ``ruling_angle_deg`` (the largest between neighbouring rulings),
+    ``side_ratio`` (the largest longest-over-shortest side), ``width_mm``, ``area_m2`` and
+    ``area_ratio`` (over the net strip's); non-finite values (a collapsed quad side's ratio, a
+    missing measure) become null in the JSON. For a trimmed strip ``part_gaps[id]`` (its
+    parts' :func:`part_end_gaps`) replace the end gaps and ``part_areas[id]`` (its parts'
+    areas) the area; the ratio is then taken over ``outline_area`` (the reference's, for all
+    strips together) rather than the net's.
     """
     k = mm_per_unit
     by_v = {s.v: s for s in measures}
@@ -265,30 +267,31 @@ def summary(ids: list[str], measures: list[StripMeasures], *, mm_per_unit: float
         seams = [s.seam(by_v[w]) if w in by_v else (float("nan"),) * 2
                  for w in (s.v - 1, s.v + 1)]
         area = float(sum(part_areas[sid])) if sid in part_areas else s.area
-        per[sid] = {"end_gaps": ends, "deviation": _max(s.deviation) * k,
-                    "planarity": _max(s.planarity) * k,
-                    "seam_step": [_none(x[0] * k) for x in seams],
-                    "seam_gap": [_none(x[1] * k) for x in seams],
-                    "ruling_angle": _max(s.ruling_angle), "side_ratio": _max(s.side_ratio),
-                    "width": s.width * k, "area": area * k * k * 1e-6,
+        per[sid] = {"end_gaps_mm": ends, "deviation_mm": _max(s.deviation) * k,
+                    "planarity_mm": _max(s.planarity) * k,
+                    "seam_step_mm": [_none(x[0] * k) for x in seams],
+                    "seam_gap_mm": [_none(x[1] * k) for x in seams],
+                    "ruling_angle_deg": _max(s.ruling_angle),
+                    "side_ratio": _max(s.side_ratio),
+                    "width_mm": s.width * k, "area_m2": area * k * k * 1e-6,
                     "area_ratio": area / s.net_area}
     rows = list(per.values())
     width = float(np.mean([s.width for s in measures])) * k
-    for key in ("deviation", "planarity", "ruling_angle", "side_ratio"):
+    for key in ("deviation_mm", "planarity_mm", "ruling_angle_deg", "side_ratio"):
         worst[f"max_{key}"] = _max([r[key] for r in rows])
-    worst["max_end_gap"] = _max([abs(g) for r in rows for g in r["end_gaps"] if g is not None])
-    for key in ("seam_step", "seam_gap"):
+    worst["max_end_gap_mm"] = _max([abs(g) for r in rows for g in r["end_gaps_mm"]
+                                    if g is not None])
+    for key in ("seam_step_mm", "seam_gap_mm"):
         worst[f"max_{key}"] = _none(_max([x for r in rows for x in r[key] if x is not None]))
-    area = float(sum(r["area"] for r in rows))
+    area = float(sum(r["area_m2"] for r in rows))
     reference = (outline_area * k * k * 1e-6 if part_areas and outline_area
                  else float(sum(s.net_area for s in measures)) * k * k * 1e-6)
-    return {"units": {"length": "mm", "angle": "degrees", "area": "m²"},
-            "mean_width": width, **worst,
-            "max_deviation_relative": worst["max_deviation"] / width,
-            "max_seam_step_relative": (None if worst["max_seam_step"] is None
-                                       else worst["max_seam_step"] / width),
-            "max_planarity_relative": worst["max_planarity"] / width,
-            "area": area, "reference_area": reference,
+    return {"mean_width_mm": width, **worst,
+            "max_deviation_relative": worst["max_deviation_mm"] / width,
+            "max_seam_step_relative": (None if worst["max_seam_step_mm"] is None
+                                       else worst["max_seam_step_mm"] / width),
+            "max_planarity_relative": worst["max_planarity_mm"] / width,
+            "area_m2": area, "reference_area_m2": reference,
             "area_reference": "outline" if part_areas and outline_area else "net",
             "area_ratio": area / reference if reference > 0 else None,
             "per_strip": per}
