@@ -279,8 +279,10 @@ def template_boards(devs: list[Development], ids: list[str], columns: list[int],
             g = board_geometry(d, along[k], along[k + 1], ts[k], ts[k + 1])
             name = f"{ids[i]}.{k + 1}"
             t0, t1 = float(ts[k, :, 0].min()), float(ts[k + 1, :, 0].max())
+            span = ({"row_span": [t0, t1]} if on_rulings and (fractional(t0) or fractional(t1))
+                    else {})
             parts.append({"id": name, "strip": int(columns[i]), "board": k + 1,
-                          "rows": [int(np.floor(t0 + 1e-9)), int(np.ceil(t1 - 1e-9))],
+                          "rows": [int(np.floor(t0 + 1e-9)), int(np.ceil(t1 - 1e-9))], **span,
                           "positions": [float(along[k].mean()), float(along[k + 1].mean())],
                           "cuts": [{"along": along[j].tolist(), "A": ts[j, 0].tolist(),
                                     "B": ts[j, 1].tolist(),
@@ -302,7 +304,8 @@ def template_boards(devs: list[Development], ids: list[str], columns: list[int],
         class_records.append(class_record(cls.id, parts[cls.representative]["id"],
                                           [parts[n]["id"] for n in cls.members],
                                           [al.error for al in cls.alignments], rep_len))
-    joints = [{"strip": ids[i], "row": min(max(int(round(t)), 1), devs[i].A.shape[0] - 2),
+    joints = [{"strip": ids[i], "row": (joint_row(t) if on_rulings else
+                                        min(max(int(round(t)), 1), devs[i].A.shape[0] - 2)),
                "position": parts[n]["positions"][1], "cut": parts[n]["cuts"][1],
                "parts": [parts[n]["id"], parts[n + 1]["id"]]}
               for n, (i, t) in enumerate(ends[:-1]) if ends[n + 1][0] == i]

@@ -54,8 +54,8 @@ class Board:
 
 
 def fractional(t: float) -> bool:
-    """Whether the row ``t`` lies inside a quad (not on a ruling)."""
-    return float(t) != float(np.round(t))
+    """Whether the row ``t`` lies inside a quad (not on a ruling, to round-off)."""
+    return abs(float(t) - float(np.round(t))) > 1e-9
 
 
 def knots(a: float, b: float) -> np.ndarray:
@@ -87,7 +87,7 @@ def last_within(extent, a: float, hi: float, stock: float, steps: int = 60) -> f
     lo = a
     for _ in range(steps):
         mid = 0.5 * (lo + hi)
-        if mid <= lo or mid >= hi:
+        if hi - lo <= 1e-12 * max(1.0, abs(hi)):
             break
         if extent(a, mid) <= stock:
             lo = mid
@@ -96,31 +96,35 @@ def last_within(extent, a: float, hi: float, stock: float, steps: int = 60) -> f
     return lo
 
 
-def cut_inside(extent, a: float, nxt: float, stock: float, forbidden: np.ndarray,
-               stagger: float, positions: np.ndarray, cuttable=None, after: float | None = None
-               ) -> tuple[float | None, float | None]:
+def cut_inside(extent, a: float, nxt: float, stock: float, sides: list, stagger: float,
+               cuttable=None, after: float | None = None) -> tuple[float | None, float | None]:
     """Joints inside the quad(s) between the row ``a`` and the next ruling ``nxt`` the board
     can be cut at (:func:`split_run`): ``t_max``, the farthest ``t`` within the stock, and the
-    farthest ``t`` up to it that keeps ``stagger`` from the neighbour's joints ``forbidden``
-    (``t_max`` itself, or moved back to the edge of a joint's stagger), beyond the row
-    ``after`` (default ``a``); each None where there is none, or ``cuttable(t)`` refuses it."""
+    farthest ``t`` up to it that keeps ``stagger`` from the neighbours' joints (``t_max``
+    itself, or moved back to the edge of a joint's stagger), beyond the row ``after`` (default
+    ``a``); each None where there is none, or ``cuttable(t)`` refuses it. ``sides`` lists
+    ``(positions, forbidden)``: the arc lengths ``(m,)`` of a side at the rows and the
+    neighbour's joints on it."""
     t_max = last_within(extent, a, nxt, stock)
     if not t_max > a:
         return None, None
-    edges = np.interp(np.concatenate([forbidden - stagger, forbidden + stagger]), positions,
-                      np.arange(len(positions), dtype=float))
     after = a if after is None else after
+    rows = np.arange(len(sides[0][0]) if sides else 0, dtype=float)
+    edges = np.concatenate([np.interp(np.concatenate([f - stagger, f + stagger]), x, rows)
+                            for x, f in sides] + [np.zeros(0)])
     tries = np.concatenate([[t_max], np.sort(edges[(edges > after) & (edges < t_max)])[::-1]])
     if cuttable is not None:
         tries = np.array([t for t in tries if cuttable(t)])
     if tries.size == 0:
         return None, None
     t_max = float(tries[0]) if tries[0] == t_max else None
-    far = at_rows(positions, tries)
-    if forbidden.size:
-        gap = np.min(np.abs(far[:, None] - forbidden[None, :]), axis=1)
-        tries = tries[(gap >= stagger * (1 - 1e-9))
-                      & (far > at_rows(positions, a) + 1e-9 * stock)]
+    keep = np.ones(len(tries), bool)
+    for x, f in sides:
+        if f.size:
+            far = at_rows(x, tries)
+            keep &= ((np.min(np.abs(far[:, None] - f[None, :]), axis=1)
+                      >= stagger * (1 - 1e-9)) & (far > at_rows(x, a) + 1e-9 * stock))
+    tries = tries[keep]
     return t_max, (float(tries[0]) if tries.size else None)
 
 
@@ -169,7 +173,7 @@ def split_run(extent, start: float, stop: float, candidates: list[int], stock: f
         ends = [b for b in ahead if extent(a, b) <= stock][::-1]      # farthest first
         if not ends:                 # no ruling within the stock: a joint inside the quad
             nxt = ahead[0] if ahead else stop
-            t_max, t_ok = cut_inside(extent, a, nxt, stock, forbidden, stagger, positions,
+            t_max, t_ok = cut_inside(extent, a, nxt, stock, [(positions, forbidden)], stagger,
                                      cuttable)
             if t_max is None and t_ok is None:
                 raise DgpcError(f"{name}: from row {a:g} to row {nxt:g} (the next ruling it "
@@ -191,8 +195,10 @@ def split_run(extent, start: float, stop: float, candidates: list[int], stock: f
               or np.min(np.abs(positions[b] - forbidden)) >= stagger]
         if not ok:                   # no ruling keeps the stagger: inside a quad, if one does
             later = [b for b in ahead if b > ends[0]]
-            _, t_ok = cut_inside(extent, a, later[0] if later else stop, stock, forbidden,
-                                 stagger, positions, cuttable, after=ends[-1])
+            nxt = later[0] if later else stop
+            half = last_within(extent, a, nxt, 0.5 * stock)      # boards of half the stock on
+            _, t_ok = cut_inside(extent, a, nxt, stock, [(positions, forbidden)], stagger,
+                                 cuttable, after=min(ends[-1], half))
             ok = [] if t_ok is None else [t_ok]
         if not ok and relax:
             gap = np.min(np.abs(positions[ends][:, None] - forbidden[None, :]), axis=1)
