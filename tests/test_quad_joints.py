@@ -8,11 +8,13 @@ Built on strips of a cone (every quad planar: its four corners lie in a plane th
 apex), rows spaced unevenly so that one quad is longer than the stock."""
 
 import csv
+import json
 
 import numpy as np
 import pytest
 from cli_helpers import dgpc
 
+from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.flat import read_flat
 from dgpc_cli.io.strips import StripsArtifact, strips_files
@@ -187,3 +189,9 @@ def test_unfold_records_fractional_rows(geometry, tmp_path):
         rows = list(csv.DictReader(fh))
     starts = [float(r["row_start"]) for r in rows]
     assert any(LONG < s < LONG + 1 for s in starts)
+    doc = json.loads((tmp_path / "f.json").read_text())
+    part = next(p for p in doc["data"]["parts"] if "row_span" in p)
+    part["row_span"] = [part["row_span"][1], part["row_span"][0]]
+    (tmp_path / "f.json").write_text(json.dumps(doc))
+    with pytest.raises(DgpcError, match="row_span"):
+        read_flat(tmp_path / "f")

@@ -257,6 +257,19 @@ def _check_part_points(parts: list[dict], json_path: Path) -> None:
                                 f"{coordinate_problem(points[bad[0]])}", source=json_path)
 
 
+def _check_row_spans(parts: list[dict], json_path) -> None:
+    """A part's fractional rows (``row_span``, a joint inside a quad) ascending and within the
+    net rows it reaches into (``rows``); DgpcError naming the first part where they are not."""
+    for i, p in enumerate(parts):
+        span = p.get("row_span")
+        if span is not None and not (p["rows"][0] <= span[0] < span[1] <= p["rows"][1]
+                                     and np.floor(span[0]) == p["rows"][0]
+                                     and np.ceil(span[1]) == p["rows"][1]):
+            raise DgpcError(f"data.parts[{i}].row_span: {span} does not lie in its rows "
+                            f"{p['rows']} (from row_span[0] rounded down to row_span[1] "
+                            "rounded up)", source=json_path)
+
+
 def _obj_vertices(part: dict) -> int:
     """Vertices of a part's OBJ object: 2 per row, or for a part trimmed to the reference's
     outline those of its outline and score lines."""
@@ -297,6 +310,7 @@ def read_flat(stem: str | Path) -> FlatArtifact:
                     field)
     parts, classes = data["parts"], data["classes"]
     _check_part_points(parts, json_path)
+    _check_row_spans(parts, json_path)
     check_simple_outlines(parts, json_path)
     ids = [p["id"] for p in parts]
     if len(set(ids)) != len(ids):
