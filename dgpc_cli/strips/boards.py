@@ -24,7 +24,9 @@ pieces stay planar and their developments exact; its direction lies between thos
 rulings bounding the quad (the joint leans no more than they do), and the board's rows are
 then fractional (:func:`knots`). ``f`` is as large as the stock allows, moved back where that
 keeps the stagger from the neighbour's joints. A joint goes inside a quad too where no ruling
-within the stock keeps the stagger but a point inside a quad does.
+within the stock keeps the stagger but a point inside a quad does, and where the farthest
+ruling within the stock would leave a board shorter than half the stock (a sliver before a
+long quad).
 """
 
 from __future__ import annotations
@@ -40,6 +42,10 @@ from .develop import Development
 from .trim import strip_points
 
 log = logging.getLogger(__name__)
+
+#: A board shorter than this fraction of the stock, cut at a ruling, is cut inside the quad
+#: beyond that ruling instead (where that keeps the stagger): no sliver before a long quad.
+SLIVER = 0.5
 
 
 @dataclass(frozen=True)
@@ -154,7 +160,8 @@ def split_run(extent, start: float, stop: float, candidates: list[int], stock: f
     Where no ruling within the stock keeps the stagger: DgpcError, or with ``relax`` (the
     default stagger, not one asked for) the ruling farthest from the neighbour's joints,
     with a warning (rulings farther apart than the stagger leave no choice). Where no ruling
-    lies within the stock, or none that keeps the stagger, the joint is cut inside a quad
+    lies within the stock, or none that keeps the stagger, or the farthest one that does
+    leaves a board shorter than :data:`SLIVER` of the stock, the joint is cut inside a quad
     (:func:`cut_inside`; a fractional row), where ``cuttable(t)`` (default: everywhere)
     allows it."""
     joints: list[float] = []
@@ -200,6 +207,11 @@ def split_run(extent, start: float, stop: float, candidates: list[int], stock: f
             _, t_ok = cut_inside(extent, a, nxt, stock, [(positions, forbidden)], stagger,
                                  cuttable, after=min(ends[-1], half))
             ok = [] if t_ok is None else [t_ok]
+        elif extent(a, ok[0]) < SLIVER * stock:     # a short board: a longer one inside a quad
+            later = [b for b in ahead if b > ends[0]]
+            _, t_ok = cut_inside(extent, a, later[0] if later else stop, stock,
+                                 [(positions, forbidden)], stagger, cuttable, after=ok[0])
+            ok = ok if t_ok is None else [t_ok]
         if not ok and relax:
             gap = np.min(np.abs(positions[ends][:, None] - forbidden[None, :]), axis=1)
             ok = [ends[int(np.argmax(gap))]]

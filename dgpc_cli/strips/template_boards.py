@@ -33,7 +33,7 @@ from shapely.geometry import LineString, Polygon
 
 from dgpc_cli.errors import DgpcError
 
-from .boards import cumulative, cut_inside
+from .boards import SLIVER, cumulative, cut_inside, last_within
 from .cut_edges import inverse_bilinear
 from .develop import Development, signed_area, straightness
 from .trim import strip_points
@@ -100,7 +100,9 @@ def greedy_pattern(dev: Development, candidates: np.ndarray, allowed: np.ndarray
     """A pattern of cuts among ``candidates`` where ``allowed``: from the first row, each
     board as long as the stock allows (:func:`board_extent`); DgpcError when no allowed cut
     keeps a board within the stock. ``quads`` (candidates on the rulings): where no ruling
-    within the stock is allowed, a cut inside a quad (:func:`quad_cut`) that keeps
+    within the stock is allowed, or the farthest one leaves a board shorter than
+    :data:`~dgpc_cli.strips.boards.SLIVER` of the stock, a cut inside a quad
+    (:func:`quad_cut`) that keeps
     ``stagger`` from the joints ``quads`` lists (``(side, joints)``: side 0 or 1, A or B, and
     arc lengths of the other pattern's joints on it)."""
     ea, eb = dev.cut_edges
@@ -124,6 +126,12 @@ def greedy_pattern(dev: Development, candidates: np.ndarray, allowed: np.ndarray
             if inside is not None:
                 cuts.append(inside)
                 continue
+        if (fit and quads is not None          # a sliver at a ruling: inside the next quad
+                and board_extent(ea, sa, eb, sb, a, candidates[fit[0]]) < SLIVER * stock):
+            inside = quad_cut(dev, a, ahead, lo, stock, quads, stagger, after=fit[0] + 1.0)
+            if inside is not None:
+                cuts.append(inside)
+                continue
         if not fit:
             raise DgpcError(f"{name}: no cut of the template from {a.mean():.6g} on keeps a "
                             f"board within the stock length {stock:.6g} and the stagger from "
@@ -135,14 +143,15 @@ def greedy_pattern(dev: Development, candidates: np.ndarray, allowed: np.ndarray
 
 
 def quad_cut(dev: Development, a: np.ndarray, ahead: np.ndarray, lo: int, stock: float,
-             quads: list, stagger: float) -> np.ndarray | None:
+             quads: list, stagger: float, after: float | None = None) -> np.ndarray | None:
     """A cut ``(α, β)`` inside a planar quad of the template developed as ``dev`` (cut at its
     rulings) after the cut ``a``, where the rulings ``ahead`` (indices of the interior rulings
     beyond ``a``) offer none: the first ``lo`` of them lie within the stock. The cut is the
     straight line at the fraction ``f`` of both sides of quad ``u`` (row ``t = u + f``), as
     far as the stock allows, and, where ``quads`` names the other pattern's joints, at least
-    ``stagger`` from them (:func:`~dgpc_cli.strips.boards.cut_inside`); beyond the first ruling
-    within the stock where there is one. None where no such cut is."""
+    ``stagger`` from them (:func:`~dgpc_cli.strips.boards.cut_inside`); beyond the row
+    ``after``, by default the first ruling within the stock where there is one (or where the
+    board reaches half the stock, if that comes first). None where no such cut is."""
     ea, eb = dev.cut_edges
     sa, sb = cumulative(ea), cumulative(eb)
     m = dev.A.shape[0]
@@ -156,10 +165,11 @@ def quad_cut(dev: Development, a: np.ndarray, ahead: np.ndarray, lo: int, stock:
 
     t0 = float(np.interp(a[0], sa, rows))
     nxt = float(ahead[lo] + 1) if lo < len(ahead) else m - 1.0
-    after = float(ahead[0] + 1) if lo > 0 else None
+    if after is None and lo > 0:           # boards of half the stock on
+        after = min(float(ahead[0] + 1), last_within(extent, t0, nxt, 0.5 * stock))
     sides = [((sa, sb)[side], np.asarray(joints, float)) for side, joints in quads]
     t_max, t_ok = cut_inside(extent, t0, nxt, stock, sides, stagger, after=after)
-    if t_ok is None and lo == 0 and t_max is not None:
+    if t_ok is None and lo == 0 and t_max is not None and after is None:
         log.warning("a template cut inside quad %d keeps less than the stagger %.4g from the "
                     "joints of the strips beside it: no cut within the stock keeps it there",
                     int(t_max), stagger)
