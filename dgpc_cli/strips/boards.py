@@ -46,6 +46,9 @@ log = logging.getLogger(__name__)
 #: A board shorter than this fraction of the stock, cut at a ruling, is cut inside the quad
 #: beyond that ruling instead (where that keeps the stagger): no sliver before a long quad.
 SLIVER = 0.5
+#: A board shorter than this fraction of the stock along its side A, cut at a ruling, is cut
+#: inside the quad beyond it even where that breaks the default stagger (with a warning).
+TINY = 0.1
 
 
 @dataclass(frozen=True)
@@ -163,7 +166,8 @@ def split_run(extent, start: float, stop: float, candidates: list[int], stock: f
     lies within the stock, or none that keeps the stagger, or the farthest one that does
     leaves a board shorter than :data:`SLIVER` of the stock, the joint is cut inside a quad
     (:func:`cut_inside`; a fractional row), where ``cuttable(t)`` (default: everywhere)
-    allows it."""
+    allows it; with ``relax`` a board shorter than :data:`TINY` of the stock is not left
+    for the stagger's sake."""
     joints: list[float] = []
     close: list[tuple[float, float]] = []        # joints nearer the neighbour's than stagger
     a = start
@@ -200,22 +204,29 @@ def split_run(extent, start: float, stop: float, candidates: list[int], stock: f
             continue
         ok = [b for b in ends if forbidden.size == 0
               or np.min(np.abs(positions[b] - forbidden)) >= stagger]
+        later = [b for b in ahead if b > ends[0]]
+        nxt = later[0] if later else stop
+        t_max = t_ok = None
         if not ok:                   # no ruling keeps the stagger: inside a quad, if one does
-            later = [b for b in ahead if b > ends[0]]
-            nxt = later[0] if later else stop
             half = last_within(extent, a, nxt, 0.5 * stock)      # boards of half the stock on
-            _, t_ok = cut_inside(extent, a, nxt, stock, [(positions, forbidden)], stagger,
-                                 cuttable, after=min(ends[-1], half))
-            ok = [] if t_ok is None else [t_ok]
+            t_max, t_ok = cut_inside(extent, a, nxt, stock, [(positions, forbidden)], stagger,
+                                     cuttable, after=min(ends[-1], half))
         elif extent(a, ok[0]) < SLIVER * stock:     # a short board: a longer one inside a quad
-            later = [b for b in ahead if b > ends[0]]
-            _, t_ok = cut_inside(extent, a, later[0] if later else stop, stock,
-                                 [(positions, forbidden)], stagger, cuttable, after=ok[0])
-            ok = ok if t_ok is None else [t_ok]
-        if not ok and relax:
-            gap = np.min(np.abs(positions[ends][:, None] - forbidden[None, :]), axis=1)
-            ok = [ends[int(np.argmax(gap))]]
-            close.append((ok[0], float(gap.max())))
+            t_max, t_ok = cut_inside(extent, a, nxt, stock, [(positions, forbidden)], stagger,
+                                     cuttable, after=ok[0])
+        if t_ok is not None:
+            ok = [t_ok]
+        elif relax and (ok or ends):
+            if not ok:               # the ruling farthest from the neighbour's joints
+                gap = np.min(np.abs(positions[ends][:, None] - forbidden[None, :]), axis=1)
+                ok = [ends[int(np.argmax(gap))]]
+            if (t_max is not None and t_max > ok[0]
+                    and at_rows(positions, ok[0]) - at_rows(positions, a) < TINY * stock):
+                ok = [t_max]         # rather than a sliver of a board
+            far = float(np.min(np.abs(at_rows(positions, ok[0]) - forbidden),
+                               initial=np.inf))
+            if far < stagger:
+                close.append((ok[0], far))
         if not ok:
             raise DgpcError(f"{name}: no ruling between rows {ends[-1]} and {ends[0]} keeps "
                             f"{stagger:.6g} from the joints of the strip beside it; use a "
