@@ -19,7 +19,7 @@ from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.flat import read_flat
 from dgpc_cli.io.strips import StripsArtifact, strips_files
 from dgpc_cli.stages.unfold import unfold_strips
-from dgpc_cli.strips.boards import knots, strip_between
+from dgpc_cli.strips.boards import knots, split_run, strip_between
 from dgpc_cli.strips.develop import develop_strip, signed_area
 
 STOCK = 6000.0                                          # mm
@@ -195,3 +195,41 @@ def test_unfold_records_fractional_rows(geometry, tmp_path):
     (tmp_path / "f.json").write_text(json.dumps(doc))
     with pytest.raises(DgpcError, match="row_span"):
         read_flat(tmp_path / "f")
+
+
+def _run(rows, stock, forbidden=(), stagger=0.0, relax=False):
+    """Joints of a straight strip of unit width whose rulings lie at the arc lengths ``rows``
+    (a board's extent: its length)."""
+    positions = np.asarray(rows, float)
+
+    def extent(a, b):
+        return float(np.interp(b, np.arange(len(rows)), positions)
+                     - np.interp(a, np.arange(len(rows)), positions))
+
+    m = len(rows)
+    return split_run(extent, 0, m - 1, list(range(1, m - 1)), stock,
+                     np.asarray(forbidden, float), stagger, positions, "S-v01", relax)
+
+
+def test_no_sliver_is_left_before_a_long_quad():
+    """Rulings at 0, 1, 10, 11 with a stock of 6: the farthest ruling within the stock (1)
+    would leave a board of 1 before the long quad; the joint goes inside it, at 6."""
+    joints = _run([0.0, 1.0, 10.0, 11.0], 6.0)
+    cuts = np.interp([0, *joints, 3], np.arange(4), [0.0, 1.0, 10.0, 11.0])
+    assert np.diff(cuts).max() <= 6.0 + 1e-9
+    assert cuts[1] == pytest.approx(6.0, abs=1e-9)            # inside the quad 1 … 2
+    assert len(joints) == 1 and 1 < joints[0] < 2
+
+
+def test_a_joint_inside_a_quad_keeps_the_stagger():
+    """The neighbour's joint at 5.5: the farthest cut within the stock (6) is nearer than the
+    stagger 2, so the joint moves back to 3.5, inside the long quad."""
+    joints = _run([0.0, 1.0, 10.0, 11.0], 6.0, forbidden=[5.5], stagger=2.0)
+    cuts = np.interp([0, *joints, 3], np.arange(4), [0.0, 1.0, 10.0, 11.0])
+    assert cuts[1] == pytest.approx(3.5, abs=1e-9)
+    assert np.diff(cuts).max() <= 6.0 + 1e-9
+    # a stagger no cut can keep: an error, or with the default stagger a warning
+    with pytest.raises(DgpcError, match="keeps"):
+        _run([0.0, 8.0, 9.0], 6.0, forbidden=[5.0, 2.0], stagger=4.0)
+    joints = _run([0.0, 8.0, 9.0], 6.0, forbidden=[5.0, 2.0], stagger=4.0, relax=True)
+    assert joints == pytest.approx([0.75], abs=1e-9)           # as far as the stock allows

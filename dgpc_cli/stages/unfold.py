@@ -118,8 +118,9 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
                   cut_edges: list | None = None, template: bool = False
                   ) -> tuple[list[dict], list[dict], list[dict]]:
     """Develop every strip ``(A, B)`` of ``geometry`` (mm), cut it into boards no longer than
-    ``stock_length`` (mm; None: whole strips) with joints ``stagger`` apart (default a quarter
-    of the stock, kept where the rulings allow, with a warning where they do not), and
+    ``stock_length`` (mm; None: whole strips) at rulings, or straight across a planar quad where
+    none fits (:mod:`dgpc_cli.strips.boards`), with joints ``stagger`` apart (default a quarter
+    of the stock, kept where the joints allow, with a warning where they do not), and
     classify the parts within ``congruence_tol`` (mm); every class then says whether its
     copies share the template's score lines (:func:`with_score_lines`).
 
