@@ -233,3 +233,29 @@ def test_a_joint_inside_a_quad_keeps_the_stagger():
         _run([0.0, 8.0, 9.0], 6.0, forbidden=[5.0, 2.0], stagger=4.0)
     joints = _run([0.0, 8.0, 9.0], 6.0, forbidden=[5.0, 2.0], stagger=4.0, relax=True)
     assert joints == pytest.approx([0.75], abs=1e-9)           # as far as the stock allows
+
+
+def test_strips_with_cut_edges_are_cut_inside_quads_along_their_edges():
+    """Strips of a shared-outline template cut one by one (each its own rulings and the
+    template's curves as cut edges), a stock shorter than some of their quads: the boards'
+    outlines follow the cut edges to where they cross the joint, within the stock (measured
+    along the edges), and add up to the strip."""
+    from test_template_boards import COLUMNS, CURVES, _bent, _developments
+
+    from dgpc_cli.strips.cut_edges import template_cut_edges
+
+    devs = np.concatenate([_developments(), _developments()[::-1]])
+    A, B = _bent(devs)
+    cuts = [{"A": a, "B": b} for a, b in template_cut_edges(devs, CURVES)]
+    geometry, ids = list(zip(A, B, strict=True)), [f"S-v{v:02d}" for v in COLUMNS]
+    stock = 450.0
+    assert np.linalg.norm(np.diff(A[0], axis=0), axis=1).max() + 300.0 > stock
+    parts, _, _ = unfold_strips(geometry, ids, COLUMNS, congruence_tol=0.01, stock_length=stock,
+                                cut_edges=cuts)
+    whole, _, _ = unfold_strips(geometry, ids, COLUMNS, congruence_tol=0.01, cut_edges=cuts)
+    assert sum("row_span" in p for p in parts) > len(COLUMNS)
+    for p in parts:
+        assert np.ptp(np.asarray(p["outline"])[:, 0]) <= stock + 1e-9
+    for w in whole:
+        area = sum(p["area"] for p in parts if p["strip"] == w["strip"])
+        assert area == pytest.approx(w["area"], rel=1e-7)

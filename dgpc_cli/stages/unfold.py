@@ -23,6 +23,7 @@ from dgpc_cli.strips.boards import (
     Board,
     at_rows,
     cumulative,
+    edge_path,
     fractional,
     knots,
     split_boards,
@@ -34,7 +35,7 @@ from dgpc_cli.strips.develop import Development, develop_strip, signed_area
 from dgpc_cli.strips.pinch import PINCH
 from dgpc_cli.strips.score_lines import aligned, score_distance
 from dgpc_cli.strips.template_boards import board_geometry, cut_params, cut_path, template_patterns
-from dgpc_cli.strips.trim import developed_part
+from dgpc_cli.strips.trim import developed_part, strip_points
 from dgpc_cli.strips.trimmed_boards import board_ring, split_trimmed, whole
 
 log = logging.getLogger(__name__)
@@ -81,34 +82,47 @@ def row_span(a: float, b: float) -> dict:
     return out
 
 
-def with_cut_edges(d: Development, cut: dict | None, r0: float, r1: float) -> Development:
-    """The development ``d`` of the rows ``r0..r1`` of a strip (fractional at a joint inside
-    a quad: :func:`~dgpc_cli.strips.boards.strip_between`) with the strip's cut edges ``cut``
-    (its record's ``cut_edges``: the interior samples ``A``, ``B`` in the strip's ``(t, s)``,
-    :mod:`dgpc_cli.strips.cut_edges`) over those rows; ``d`` itself without. At a fractional
-    end the cut edge starts at the joint's end on the strip's side."""
+def with_cut_edges(d: Development, cut: dict | None, r0: float, r1: float,
+                   m: int | None = None) -> Development:
+    """The development ``d`` of the rows ``r0..r1`` of a strip of ``m`` rows (fractional at a
+    joint inside a quad: :func:`~dgpc_cli.strips.boards.strip_between`) with the strip's cut
+    edges ``cut`` (its record's ``cut_edges``: the interior samples ``A``, ``B`` in the strip's
+    ``(t, s)``, :mod:`dgpc_cli.strips.cut_edges`) over those rows; ``d`` itself without. At a
+    fractional end the cut edge starts where it crosses the joint's line (``t`` = that row,
+    :func:`~dgpc_cli.strips.boards.edge_path`), at a whole row at the strip's vertex, as the
+    strip's own cut edges do."""
     if cut is None:
         return d
     samples = [np.asarray(cut[k], float).reshape(-1, 2) for k in ("A", "B")]
     if fractional(r0) or fractional(r1):
         T = knots(r0, r1)
-        shifted = [np.column_stack([np.interp(ts[:, 0], T, np.arange(len(T), dtype=float)),
-                                    ts[:, 1]])[(ts[:, 0] > r0) & (ts[:, 0] < r1)]
-                   for ts in samples]
-        return dataclasses.replace(d, edges=edges_between(d.A, d.B, shifted, 0, len(T) - 1))
+        paths = [edge_path(e, r0, r1) for e in full_edges(cut, m)]
+        return dataclasses.replace(d, edges=tuple(
+            strip_points(d.A, d.B, np.column_stack([np.interp(p[:, 0], T, np.arange(len(T))),
+                                                    p[:, 1]])) for p in paths))
     shifted = [ts - [r0, 0.0] for ts in samples]
     return dataclasses.replace(d, edges=edges_between(d.A, d.B, shifted, 0, int(r1 - r0)))
 
 
+def full_edges(cut: dict, m: int) -> list[np.ndarray]:
+    """A strip's cut edges (its record's ``cut_edges``) as polylines in its ``(t, s)`` from the
+    vertex at row 0 to the vertex at row ``m − 1``, A then B."""
+    return [np.concatenate([[[0.0, side]], np.asarray(cut[k], float).reshape(-1, 2),
+                            [[m - 1.0, side]]]) for side, k in enumerate(("A", "B"))]
+
+
 def _boards(geometry: list, devs: list[Development], ids: list[str], columns: list[int],
-            stock_length: float | None, stagger: float | None) -> list[Board]:
+            stock_length: float | None, stagger: float | None,
+            cut_edges: list | None = None) -> list[Board]:
     """Every part as a board: one per strip without a stock length."""
     if stock_length is None:
         return [Board(i, 1, 0, d.A.shape[0] - 1) for i, d in enumerate(devs)]
     relax = stagger is None
     stagger = STAGGER_FRACTION * stock_length if stagger is None else stagger
+    cuts = [None if c is None else full_edges(c, len(A))
+            for c, (A, _) in zip(cut_edges or [None] * len(devs), geometry, strict=True)]
     return [b for boards in split_boards(devs, geometry, columns, ids, stock_length, stagger,
-                                         relax) for b in boards]
+                                         relax, cuts) for b in boards]
 
 
 def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
@@ -201,12 +215,13 @@ def _unfold_parts(geometry, ids, columns, congruence_tol, mirror_ok, stock_lengt
             log.warning("a template cut could not be placed on a strip (%s)", exc)
         log.warning("the strips of the template are not copies within %.3g mm: their boards "
                     "are cut at their own rulings", congruence_tol)
-    boards = _boards(geometry, devs, ids, columns, stock_length, stagger)
+    boards = _boards(geometry, devs, ids, columns, stock_length, stagger, cut_edges)
     split = stock_length is not None
     names = [f"{ids[b.strip]}.{b.number}" if split else ids[b.strip] for b in boards]
     pieces = [with_cut_edges(develop_strip(*strip_between(*geometry[b.strip], b.start,
                                                           b.stop)),
-                             cut_edges[b.strip], b.start, b.stop) if split else devs[b.strip]
+                             cut_edges[b.strip], b.start, b.stop, len(geometry[b.strip][0]))
+              if split else devs[b.strip]
               for b in boards]
     classes = congruence_classes([d.cut_edges for d in pieces], congruence_tol,
                                  [(columns[b.strip], b.number, names[i])

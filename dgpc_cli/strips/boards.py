@@ -84,6 +84,18 @@ def strip_between(A: np.ndarray, B: np.ndarray, a: float, b: float
                  for s in (0.0, 1.0))
 
 
+def edge_path(edge: np.ndarray, a: float, b: float) -> np.ndarray:
+    """The cut edge ``edge (k, 2)`` (a shared-outline template's curve in the strip's ``(t, s)``,
+    from the vertex at row 0 to the vertex at the last row, :mod:`dgpc_cli.strips.cut_edges`)
+    from row ``a`` to row ``b``: its samples between and its ends, where it crosses a
+    fractional row (a joint inside a quad), else the strip's vertex (as at the strip's ends)."""
+    inside = edge[(edge[:, 0] > a) & (edge[:, 0] < b)]
+    side = float(edge[0, 1])
+    ends = [[r, float(np.interp(r, edge[:, 0], edge[:, 1])) if fractional(r) else side]
+            for r in (a, b)]
+    return np.concatenate([ends[:1], inside, ends[1:]])
+
+
 def at_rows(positions: np.ndarray, t) -> np.ndarray:
     """Values ``positions (m,)`` given at the rows, at the (fractional) rows ``t``: linear
     within a quad, as the arc length along its straight sides is."""
@@ -142,13 +154,16 @@ def cumulative(X: np.ndarray) -> np.ndarray:
     return np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(X, axis=0), axis=-1))])
 
 
-def board_extent(dev: Development, a: float, b: float) -> float:
+def board_extent(dev: Development, a: float, b: float, cut: list | None = None) -> float:
     """Stock length the rows ``a … b`` (fractional at a joint inside a quad) of the developed
-    strip ``dev`` need: the extent of their outline along their own mid-curve chord."""
+    strip ``dev`` need: the extent of their outline along their own mid-curve chord; with
+    ``cut`` (the strip's two cut edges in its ``(t, s)``, :func:`edge_path`) of the outline
+    along those too."""
     A, B = strip_between(dev.A, dev.B, a, b)
     chord = 0.5 * (A[-1] + B[-1]) - 0.5 * (A[0] + B[0])
     d = chord / np.linalg.norm(chord)
-    x = np.concatenate([A, B]) @ d
+    along = [] if cut is None else [strip_points(dev.A, dev.B, edge_path(e, a, b)) for e in cut]
+    x = np.concatenate([A, B, *along]) @ d
     return float(x.max() - x.min())
 
 
@@ -236,31 +251,37 @@ def split_run(extent, start: float, stop: float, candidates: list[int], stock: f
 
 
 def split_strip(dev: Development, stock: float, forbidden: np.ndarray, stagger: float,
-                positions: np.ndarray, name: str, relax: bool = False) -> list[float]:
-    """Joint rows of one developed strip (:func:`split_run` over all its rows)."""
+                positions: np.ndarray, name: str, relax: bool = False,
+                cut: list | None = None) -> list[float]:
+    """Joint rows of one developed strip (:func:`split_run` over all its rows; ``cut`` as in
+    :func:`board_extent`)."""
     m = dev.A.shape[0]
-    return split_run(lambda a, b: board_extent(dev, a, b), 0, m - 1, list(range(1, m - 1)),
-                     stock, forbidden, stagger, positions, name, relax)
+    return split_run(lambda a, b: board_extent(dev, a, b, cut), 0, m - 1,
+                     list(range(1, m - 1)), stock, forbidden, stagger, positions, name, relax)
 
 
 def keeps(dev: Development, joints: list[float], stock: float, forbidden: np.ndarray,
-          stagger: float, positions: np.ndarray) -> bool:
+          stagger: float, positions: np.ndarray, cut: list | None = None) -> bool:
     """Whether the joint rows ``joints`` of the developed strip ``dev`` give boards within
     ``stock`` whose joints keep ``stagger`` from ``forbidden`` (as in :func:`split_strip`)."""
     cuts = [0, *joints, dev.A.shape[0] - 1]
     if any(b <= a for a, b in zip(cuts[:-1], cuts[1:], strict=True)):
         return False
-    if any(board_extent(dev, a, b) > stock for a, b in zip(cuts[:-1], cuts[1:], strict=True)):
+    if any(board_extent(dev, a, b, cut) > stock
+           for a, b in zip(cuts[:-1], cuts[1:], strict=True)):
         return False
     return forbidden.size == 0 or not joints or bool(
         np.min(np.abs(at_rows(positions, joints)[:, None] - forbidden[None, :])) >= stagger)
 
 
 def split_boards(devs: list[Development], geometry: list, columns: list[int], names: list[str],
-                 stock: float, stagger: float, relax: bool = False) -> list[list[Board]]:
+                 stock: float, stagger: float, relax: bool = False,
+                 cuts: list | None = None) -> list[list[Board]]:
     """Boards of every strip: ``devs[i]`` the development of the strip ``geometry[i] = (A, B)``
     (3-D, for the arc lengths along its geodesics) of net column ``columns[i]``; ``relax`` as
-    in :func:`split_run`."""
+    in :func:`split_run`; ``cuts[i]`` the strip's cut edges in its ``(t, s)`` (None: its sides,
+    as :func:`board_extent` takes them)."""
+    cuts = cuts or [None] * len(devs)
     if not stock > 0:
         raise DgpcError(f"{stock:g}: must be > 0", source="--stock-length")
     if not stagger >= 0:
@@ -275,10 +296,11 @@ def split_boards(devs: list[Development], geometry: list, columns: list[int], na
         forbidden = (at_rows(along_b[left], joints[left]) if left is not None and left in joints
                      else np.zeros(0))
         joints[i] = split_strip(devs[i], stock, forbidden, stagger, along_a[i], names[i],
-                                relax)
+                                relax, cuts[i])
         before = by_column.get(int(columns[i]) - 2)
         if (before is not None and before in joints and len(joints[before]) <= len(joints[i])
-                and keeps(devs[i], joints[before], stock, forbidden, stagger, along_a[i])):
+                and keeps(devs[i], joints[before], stock, forbidden, stagger, along_a[i],
+                          cuts[i])):
             joints[i] = list(joints[before])
     for i in range(len(devs)):
         cuts = [0, *joints[i], devs[i].A.shape[0] - 1]
