@@ -70,8 +70,9 @@ def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_st
     strain and the straightness of the developed geodesics; groups the parts into congruence
     classes, the cutting templates (every two copies of a template within --congruence-tol,
     whatever the order of the parts), with each copy's deviation from its template in mm. With
-    --stock-length, strips are cut at rulings into boards of stock length, the joints of
-    neighbouring strips staggered (alternating between two patterns where the strips allow);
+    --stock-length, strips are cut at rulings into boards of stock length (straight across a
+    planar quad where no ruling lies within the stock), the joints of neighbouring strips
+    staggered (alternating between two patterns where the strips allow);
     the strips of one template are cut at the same straight lines of the template (not
     necessarily rulings), two joint patterns alternating, so their boards are copies of the
     boards of the two patterns; congruence classes are then per board. Writes the flat

@@ -6,7 +6,9 @@ the artifact's unit ``data.units`` (the net's):
 * ``id`` (the strip's stable id, e.g. ``S-v07``, or a board's ``S-v07.2`` with
   ``unfold --stock-length``), ``strip`` (its column v), ``board`` (1, 2, … along the strip;
   1 for a whole strip), ``rows`` (the first and last net row it covers), ``positions`` (the
-  arc length along the strip's mid-curve of those two rows), ``class``;
+  arc length along the strip's mid-curve of its two ends), ``class``; ``row_span`` where a
+  joint cuts it inside a planar quad (no ruling within the stock): the fractional rows of its
+  ends, ``u + f`` for the straight joint across quad u at the fraction f of both its sides;
 * ``outline``: the closed outline polygon, counter-clockwise, first point not repeated;
 * ``score``: open polylines (the interior rulings, bend/score lines);
 * ``label``: a point inside the part for its id;
@@ -28,9 +30,10 @@ and the largest member error (``max_error`` in the artifact's unit, ``max_deviat
 mm; each part's own in its ``alignment.deviation_mm``); ``score_lines``: ``shared`` when every
 copy's score lines, aligned, lie within the congruence tolerance of the representative's, else
 ``per copy``, and ``score_deviation_mm`` the largest such distance (mm). ``data.joints``
-lists where boards meet: ``strip``, net ``row``, ``position`` (arc length along the strip) and
-the two ``parts``; for boards of one template also the ``cut`` (as a part's ``cuts``), ``row``
-the nearest ruling.
+lists where boards meet: ``strip``, net ``row`` (fractional, ``u + f``, for a joint inside a
+quad), ``position`` (arc length along the strip) and the two ``parts``; for boards of one
+template also the ``cut`` (as a part's ``cuts``), ``row`` the nearest ruling (where the strips
+share the template's vertices, its fractional row).
 The OBJ holds the same parts (z = 0) as one object each, for viewers. Beside it, all listed in
 ``data.files``:
 
@@ -105,13 +108,23 @@ def side_by_side(outlines: list[np.ndarray]) -> list[np.ndarray]:
 def part_row(part: dict, mm: float) -> dict:
     """The :data:`PART_COLUMNS` of a part record whose lengths are ``mm`` mm per unit."""
     return {"id": part["id"], "class": part["class"], "strip": part["strip"],
-            "board": part["board"], "row_start": part["rows"][0], "row_stop": part["rows"][1],
+            "board": part["board"], **row_columns(part),
             "start_mm": f"{mm * part['positions'][0]:.3f}",
             "stop_mm": f"{mm * part['positions'][1]:.3f}",
             "length_mm": f"{mm * part['length']:.3f}",
             "width_min_mm": f"{mm * part['width'][0]:.3f}",
             "width_max_mm": f"{mm * part['width'][1]:.3f}",
             "area_mm2": f"{mm * mm * part['area']:.2f}"}
+
+
+def row_columns(part: dict) -> dict:
+    """``row_start``, ``row_stop`` of a part record: its net rows, or the fractional rows of
+    its ends (``row_span``) where a joint cuts it inside a quad."""
+    span = part.get("row_span")
+    if span is None:
+        return {"row_start": part["rows"][0], "row_stop": part["rows"][1]}
+    return {"row_start": f"{span[0]:.4f}".rstrip("0").rstrip("."),
+            "row_stop": f"{span[1]:.4f}".rstrip("0").rstrip(".")}
 
 
 def csv_bytes(columns: tuple, rows: list[dict]) -> bytes:
@@ -244,6 +257,19 @@ def _check_part_points(parts: list[dict], json_path: Path) -> None:
                                 f"{coordinate_problem(points[bad[0]])}", source=json_path)
 
 
+def _check_row_spans(parts: list[dict], json_path) -> None:
+    """A part's fractional rows (``row_span``, a joint inside a quad) ascending and within the
+    net rows it reaches into (``rows``); DgpcError naming the first part where they are not."""
+    for i, p in enumerate(parts):
+        span = p.get("row_span")
+        if span is not None and not (p["rows"][0] <= span[0] < span[1] <= p["rows"][1]
+                                     and np.floor(span[0]) == p["rows"][0]
+                                     and np.ceil(span[1]) == p["rows"][1]):
+            raise DgpcError(f"data.parts[{i}].row_span: {span} does not lie in its rows "
+                            f"{p['rows']} (from row_span[0] rounded down to row_span[1] "
+                            "rounded up)", source=json_path)
+
+
 def _obj_vertices(part: dict) -> int:
     """Vertices of a part's OBJ object: 2 per row, or for a part trimmed to the reference's
     outline those of its outline and score lines."""
@@ -284,6 +310,7 @@ def read_flat(stem: str | Path) -> FlatArtifact:
                     field)
     parts, classes = data["parts"], data["classes"]
     _check_part_points(parts, json_path)
+    _check_row_spans(parts, json_path)
     check_simple_outlines(parts, json_path)
     ids = [p["id"] for p in parts]
     if len(set(ids)) != len(ids):

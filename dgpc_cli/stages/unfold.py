@@ -19,15 +19,24 @@ from shapely.geometry import LineString, Polygon
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.nesting.template import copy_drawing, template_drawing
-from dgpc_cli.strips.boards import Board, cumulative, split_boards
+from dgpc_cli.strips.boards import (
+    Board,
+    at_rows,
+    cumulative,
+    edge_path,
+    fractional,
+    knots,
+    split_boards,
+    strip_between,
+)
 from dgpc_cli.strips.congruence import Alignment, congruence_classes, kabsch, outline_points
 from dgpc_cli.strips.cut_edges import edges_between
 from dgpc_cli.strips.develop import Development, develop_strip, signed_area
 from dgpc_cli.strips.pinch import PINCH
 from dgpc_cli.strips.score_lines import aligned, score_distance
 from dgpc_cli.strips.template_boards import board_geometry, cut_params, cut_path, template_patterns
-from dgpc_cli.strips.trim import developed_part
-from dgpc_cli.strips.trimmed_boards import board_ring, split_trimmed
+from dgpc_cli.strips.trim import developed_part, strip_points
+from dgpc_cli.strips.trimmed_boards import board_ring, split_trimmed, whole
 
 log = logging.getLogger(__name__)
 
@@ -47,13 +56,15 @@ def part_widths(A: np.ndarray, B: np.ndarray) -> tuple[float, float]:
     return float(d.min()), float(d.max())
 
 
-def board_record(d: Development, name: str, column: int, number: int, rows: list[int],
+def board_record(d: Development, name: str, column: int, number: int, rows: list[float],
                  positions: list[float]) -> dict:
-    """The part record (without class and alignment) of the developed strip or board ``d``;
-    with cut edges (a shared-outline template) its ``edges`` too, the outline and the widths
-    taken along them."""
+    """The part record (without class and alignment) of the developed strip or board ``d``
+    from row ``rows[0]`` to ``rows[1]``; with cut edges (a shared-outline template) its
+    ``edges`` too, the outline and the widths taken along them. Where a joint cuts it inside a
+    quad (a fractional row), ``rows`` are the net rows it reaches into and ``row_span`` the
+    fractional rows of its ends (:func:`row_span`)."""
     return {"id": name, "strip": int(column), "board": int(number),
-            "rows": [int(r) for r in rows], "positions": [float(x) for x in positions],
+            **row_span(*rows), "positions": [float(x) for x in positions],
             "outline": d.outline, "score": d.rulings, "label": d.label_point,
             "geodesics": [d.A, d.B], "straightness": d.straightness, "strain": d.strain,
             "length": d.length, "width": list(part_widths(*d.cut_edges)),
@@ -61,25 +72,57 @@ def board_record(d: Development, name: str, column: int, number: int, rows: list
             **({} if d.edges is None else {"edges": list(d.edges)})}
 
 
-def with_cut_edges(d: Development, cut: dict | None, r0: int, r1: int) -> Development:
-    """The development ``d`` of the rows ``r0..r1`` of a strip with the strip's cut edges
-    ``cut`` (its record's ``cut_edges``: the interior samples ``A``, ``B`` in the strip's
-    ``(t, s)``, :mod:`dgpc_cli.strips.cut_edges`) over those rows; ``d`` itself without."""
+def row_span(a: float, b: float) -> dict:
+    """``rows``: the net rows ``[floor(a), ceil(b)]`` a part from row ``a`` to row ``b``
+    reaches into; and where an end is fractional (a joint inside the planar quad ``u`` at the
+    fraction ``f`` of its sides: row ``u + f``) ``row_span``, ``[a, b]``."""
+    out = {"rows": [int(np.floor(a)), int(np.ceil(b))]}
+    if fractional(a) or fractional(b):
+        out["row_span"] = [float(a), float(b)]
+    return out
+
+
+def with_cut_edges(d: Development, cut: dict | None, r0: float, r1: float,
+                   m: int | None = None) -> Development:
+    """The development ``d`` of the rows ``r0..r1`` of a strip of ``m`` rows (fractional at a
+    joint inside a quad: :func:`~dgpc_cli.strips.boards.strip_between`) with the strip's cut
+    edges ``cut`` (its record's ``cut_edges``: the interior samples ``A``, ``B`` in the strip's
+    ``(t, s)``, :mod:`dgpc_cli.strips.cut_edges`) over those rows; ``d`` itself without. At a
+    fractional end the cut edge starts where it crosses the joint's line (``t`` = that row,
+    :func:`~dgpc_cli.strips.boards.edge_path`), at a whole row at the strip's vertex, as the
+    strip's own cut edges do."""
     if cut is None:
         return d
-    shifted = [np.asarray(cut[k], float).reshape(-1, 2) - [r0, 0.0] for k in ("A", "B")]
-    return dataclasses.replace(d, edges=edges_between(d.A, d.B, shifted, 0, r1 - r0))
+    samples = [np.asarray(cut[k], float).reshape(-1, 2) for k in ("A", "B")]
+    if fractional(r0) or fractional(r1):
+        T = knots(r0, r1)
+        paths = [edge_path(e, r0, r1) for e in full_edges(cut, m)]
+        return dataclasses.replace(d, edges=tuple(
+            strip_points(d.A, d.B, np.column_stack([np.interp(p[:, 0], T, np.arange(len(T))),
+                                                    p[:, 1]])) for p in paths))
+    shifted = [ts - [r0, 0.0] for ts in samples]
+    return dataclasses.replace(d, edges=edges_between(d.A, d.B, shifted, 0, int(r1 - r0)))
+
+
+def full_edges(cut: dict, m: int) -> list[np.ndarray]:
+    """A strip's cut edges (its record's ``cut_edges``) as polylines in its ``(t, s)`` from the
+    vertex at row 0 to the vertex at row ``m − 1``, A then B."""
+    return [np.concatenate([[[0.0, side]], np.asarray(cut[k], float).reshape(-1, 2),
+                            [[m - 1.0, side]]]) for side, k in enumerate(("A", "B"))]
 
 
 def _boards(geometry: list, devs: list[Development], ids: list[str], columns: list[int],
-            stock_length: float | None, stagger: float | None) -> list[Board]:
+            stock_length: float | None, stagger: float | None,
+            cut_edges: list | None = None) -> list[Board]:
     """Every part as a board: one per strip without a stock length."""
     if stock_length is None:
         return [Board(i, 1, 0, d.A.shape[0] - 1) for i, d in enumerate(devs)]
     relax = stagger is None
     stagger = STAGGER_FRACTION * stock_length if stagger is None else stagger
+    cuts = [None if c is None else full_edges(c, len(A))
+            for c, (A, _) in zip(cut_edges or [None] * len(devs), geometry, strict=True)]
     return [b for boards in split_boards(devs, geometry, columns, ids, stock_length, stagger,
-                                         relax) for b in boards]
+                                         relax, cuts) for b in boards]
 
 
 def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
@@ -89,8 +132,9 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
                   cut_edges: list | None = None, template: bool = False
                   ) -> tuple[list[dict], list[dict], list[dict]]:
     """Develop every strip ``(A, B)`` of ``geometry`` (mm), cut it into boards no longer than
-    ``stock_length`` (mm; None: whole strips) with joints ``stagger`` apart (default a quarter
-    of the stock, kept where the rulings allow, with a warning where they do not), and
+    ``stock_length`` (mm; None: whole strips) at rulings, or straight across a planar quad where
+    none fits (:mod:`dgpc_cli.strips.boards`), with joints ``stagger`` apart (default a quarter
+    of the stock, kept where the joints allow, with a warning where they do not), and
     classify the parts within ``congruence_tol`` (mm); every class then says whether its
     copies share the template's score lines (:func:`with_score_lines`).
 
@@ -171,12 +215,13 @@ def _unfold_parts(geometry, ids, columns, congruence_tol, mirror_ok, stock_lengt
             log.warning("a template cut could not be placed on a strip (%s)", exc)
         log.warning("the strips of the template are not copies within %.3g mm: their boards "
                     "are cut at their own rulings", congruence_tol)
-    boards = _boards(geometry, devs, ids, columns, stock_length, stagger)
+    boards = _boards(geometry, devs, ids, columns, stock_length, stagger, cut_edges)
     split = stock_length is not None
     names = [f"{ids[b.strip]}.{b.number}" if split else ids[b.strip] for b in boards]
-    pieces = [with_cut_edges(develop_strip(*(np.asarray(X, float)[b.start:b.stop + 1]
-                                             for X in geometry[b.strip])),
-                             cut_edges[b.strip], b.start, b.stop) if split else devs[b.strip]
+    pieces = [with_cut_edges(develop_strip(*strip_between(*geometry[b.strip], b.start,
+                                                          b.stop)),
+                             cut_edges[b.strip], b.start, b.stop, len(geometry[b.strip][0]))
+              if split else devs[b.strip]
               for b in boards]
     classes = congruence_classes([d.cut_edges for d in pieces], congruence_tol,
                                  [(columns[b.strip], b.number, names[i])
@@ -191,17 +236,24 @@ def _unfold_parts(geometry, ids, columns, congruence_tol, mirror_ok, stock_lengt
             d, b = pieces[i], boards[i]
             parts[i] = {**board_record(d, names[i], columns[b.strip], b.number,
                                        [b.start, b.stop],
-                                       [along[b.strip][b.start], along[b.strip][b.stop]]),
+                                       at_rows(along[b.strip], [b.start, b.stop])),
                         "class": cls.id, "alignment": al.record(rep_len)}
         class_records.append(class_record(cls.id, names[cls.representative],
                                           [names[i] for i in cls.members],
                                           [al.error for al in cls.alignments], rep_len))
-    joints = [{"strip": ids[b.strip], "row": b.stop, "position": parts[i]["positions"][1],
+    joints = [{"strip": ids[b.strip], "row": joint_row(b.stop),
+               "position": parts[i]["positions"][1],
                "parts": [names[i], names[i + 1]]}
               for i, b in enumerate(boards[:-1]) if boards[i + 1].strip == b.strip]
     log.info("%d parts in %d congruence classes, %d joints", len(parts), len(class_records),
              len(joints))
     return parts, class_records, joints
+
+
+def joint_row(t: float) -> int | float:
+    """A joint record's ``row``: the ruling's row, or (a joint inside the planar quad ``u`` at
+    the fraction ``f`` of its sides) the fractional row ``u + f``."""
+    return float(t) if fractional(t) else int(round(t))
 
 
 def one_template(devs: list[Development], tol: float) -> bool:
@@ -243,8 +295,10 @@ def template_boards(devs: list[Development], ids: list[str], columns: list[int],
             g = board_geometry(d, along[k], along[k + 1], ts[k], ts[k + 1])
             name = f"{ids[i]}.{k + 1}"
             t0, t1 = float(ts[k, :, 0].min()), float(ts[k + 1, :, 0].max())
+            span = ({"row_span": [t0, t1]} if on_rulings and (fractional(t0) or fractional(t1))
+                    else {})
             parts.append({"id": name, "strip": int(columns[i]), "board": k + 1,
-                          "rows": [int(np.floor(t0 + 1e-9)), int(np.ceil(t1 - 1e-9))],
+                          "rows": [int(np.floor(t0 + 1e-9)), int(np.ceil(t1 - 1e-9))], **span,
                           "positions": [float(along[k].mean()), float(along[k + 1].mean())],
                           "cuts": [{"along": along[j].tolist(), "A": ts[j, 0].tolist(),
                                     "B": ts[j, 1].tolist(),
@@ -266,7 +320,8 @@ def template_boards(devs: list[Development], ids: list[str], columns: list[int],
         class_records.append(class_record(cls.id, parts[cls.representative]["id"],
                                           [parts[n]["id"] for n in cls.members],
                                           [al.error for al in cls.alignments], rep_len))
-    joints = [{"strip": ids[i], "row": min(max(int(round(t)), 1), devs[i].A.shape[0] - 2),
+    joints = [{"strip": ids[i], "row": (joint_row(t) if on_rulings else
+                                        min(max(int(round(t)), 1), devs[i].A.shape[0] - 2)),
                "position": parts[n]["positions"][1], "cut": parts[n]["cuts"][1],
                "parts": [parts[n]["id"], parts[n + 1]["id"]]}
               for n, (i, t) in enumerate(ends[:-1]) if ends[n + 1][0] == i]
@@ -518,14 +573,14 @@ def trimmed_boards(geometry, devs, ids, columns, trims, congruence_tol, mirror_o
     along_a = [cumulative(np.asarray(A, float)) for A, _ in geometry]
     along_b = [cumulative(np.asarray(B, float)) for _, B in geometry]
     by_column = {int(v): i for i, v in enumerate(columns)}
-    joints: dict[int, list[int]] = {}
+    joints: dict[int, list[float]] = {}
     boards = []                       # (strip, part id, number, a, b, ring of the part)
     for i in sorted(range(len(geometry)), key=lambda i: columns[i]):
         m = len(geometry[i][0])
         pieces = (trims[i]["parts"] if trims[i] is not None else
                   [{"id": ids[i], "outline": [[0, 0], [m - 1, 0], [m - 1, 1], [0, 1]]}])
         left = by_column.get(int(columns[i]) - 1)
-        forbidden = (along_b[left][joints[left]] if left in joints else np.zeros(0))
+        forbidden = (at_rows(along_b[left], joints[left]) if left in joints else np.zeros(0))
         joints[i] = []
         for piece in pieces:
             ring = np.asarray(piece["outline"], float)
@@ -535,34 +590,38 @@ def trimmed_boards(geometry, devs, ids, columns, trims, congruence_tol, mirror_o
             ends = [float(ring[:, 0].min()), *cuts, float(ring[:, 0].max())]
             boards += [(i, piece["id"], k + 1, a, b, ring)
                        for k, (a, b) in enumerate(zip(ends[:-1], ends[1:], strict=True))]
-    parts, whole, cut = [], [], []
+    parts, entire, cut = [], [], []
     for i, pid, k, a, b, ring in boards:
         A, B = (np.asarray(X, float) for X in geometry[i])
         along = 0.5 * (along_a[i] + along_b[i])
         r0, r1 = int(np.floor(a)), int(np.ceil(b))
         board = board_ring(Polygon(ring), a, b)
+        if whole(board, a, b):         # no end cut along the outline: rows a … b
+            sub = develop_strip(*strip_between(A, B, a, b))
+            entire.append((len(parts), sub))
+            parts.append(board_record(sub, f"{pid}.{k}", columns[i], k, [a, b],
+                                      at_rows(along, [a, b])))
+            continue
         sub = develop_strip(A[r0:r1 + 1], B[r0:r1 + 1])
         record = board_record(sub, f"{pid}.{k}", columns[i], k, [r0, r1],
-                              np.interp([a, b], np.arange(len(along)), along))
-        if a == r0 and b == r1 and abs(Polygon(board).area - (b - a)) <= 1e-9 * (b - a):
-            whole.append((len(parts), sub))
-        else:
-            shifted = board - [r0, 0.0]
-            part = cuttable_part(sub.A, sub.B, shifted, f"{pid}.{k}", source)
-            ga, gb = part["geodesics"]
-            record.update(part, width=list(part_widths(ga, gb)), trimmed=True)
-            cut.append(len(parts))
+                              at_rows(along, [a, b]))
+        if (k > 1 and fractional(a)) or (b < float(ring[:, 0].max()) and fractional(b)):
+            record["row_span"] = [float(a), float(b)]       # a joint inside a quad
+        part = cuttable_part(sub.A, sub.B, board - [r0, 0.0], f"{pid}.{k}", source)
+        ga, gb = part["geodesics"]
+        record.update(part, width=list(part_widths(ga, gb)), trimmed=True)
+        cut.append(len(parts))
         parts.append(record)
-    classes = congruence_classes([(d.A, d.B) for _, d in whole], congruence_tol,
-                                 [(parts[j]["strip"], parts[j]["id"]) for j, _ in whole],
-                                 mirror_ok=mirror_ok) if whole else []
+    classes = congruence_classes([(d.A, d.B) for _, d in entire], congruence_tol,
+                                 [(parts[j]["strip"], parts[j]["id"]) for j, _ in entire],
+                                 mirror_ok=mirror_ok) if entire else []
     class_records = []
     for cls in classes:
-        rep = parts[whole[cls.representative][0]]
+        rep = parts[entire[cls.representative][0]]
         for n, al in zip(cls.members, cls.alignments, strict=True):
-            parts[whole[n][0]].update({"class": cls.id, "alignment": al.record(rep["length"])})
+            parts[entire[n][0]].update({"class": cls.id, "alignment": al.record(rep["length"])})
         class_records.append(class_record(cls.id, rep["id"],
-                                          [parts[whole[n][0]]["id"] for n in cls.members],
+                                          [parts[entire[n][0]]["id"] for n in cls.members],
                                           [al.error for al in cls.alignments], rep["length"]))
     identity = Alignment.identity()
     for j in cut:
@@ -570,7 +629,8 @@ def trimmed_boards(geometry, devs, ids, columns, trims, congruence_tol, mirror_o
         parts[j].update({"class": cid, "alignment": identity.record(parts[j]["length"])})
         class_records.append(class_record(cid, parts[j]["id"], [parts[j]["id"]], [0.0],
                                           parts[j]["length"]))
-    joint_records = [{"strip": ids[i], "row": int(b), "position": parts[n]["positions"][1],
+    joint_records = [{"strip": ids[i], "row": joint_row(b),
+                      "position": parts[n]["positions"][1],
                       "parts": [parts[n]["id"], parts[n + 1]["id"]]}
                      for n, (i, pid, k, a, b, _) in enumerate(boards[:-1])
                      if boards[n + 1][1] == pid]

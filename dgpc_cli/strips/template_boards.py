@@ -9,7 +9,10 @@ segment of the flat template between the points at arc length ``α`` along its o
 rulings, so a cut need not lie on a ruling: on the 3-D strip it is the template's straight line
 carried through the strip's planar quads (a polyline bent at the rulings it crosses); the strip's
 own rulings stay the score lines, clipped to each board. Where every strip has the template's
-own vertices (no cut edges) the cuts are the template's rulings, so joints stay on score lines.
+own vertices (no cut edges) the cuts are the template's rulings, so joints stay on score lines;
+where no ruling lies within the stock (or none keeps the stagger) a cut goes inside a planar quad
+of the template, straight across it at the same fraction of both its sides
+(:func:`dgpc_cli.strips.boards.cut_inside`), still one template line for every strip.
 
 Two joint patterns, P for the strips of even column and Q for those of odd column, alternate
 strip by strip: P greedy (each board as long as the stock allows), Q greedy too with its joints
@@ -21,6 +24,7 @@ template positions. The boards of all strips are then the boards of two patterns
 
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,10 +33,12 @@ from shapely.geometry import LineString, Polygon
 
 from dgpc_cli.errors import DgpcError
 
-from .boards import cumulative
+from .boards import SLIVER, cumulative, cut_inside, last_within
 from .cut_edges import inverse_bilinear
 from .develop import Development, signed_area, straightness
 from .trim import strip_points
+
+log = logging.getLogger(__name__)
 
 #: Step of the cut positions tried along a shared outline (mm), at most this many positions.
 STEP_MM = 1.0
@@ -90,10 +96,15 @@ def candidate_cuts(dev: Development, on_rulings: bool) -> np.ndarray:
 
 
 def greedy_pattern(dev: Development, candidates: np.ndarray, allowed: np.ndarray, stock: float,
-                   name: str) -> Cuts:
+                   name: str, quads: list | None = None, stagger: float = 0.0) -> Cuts:
     """A pattern of cuts among ``candidates`` where ``allowed``: from the first row, each
     board as long as the stock allows (:func:`board_extent`); DgpcError when no allowed cut
-    keeps a board within the stock."""
+    keeps a board within the stock. ``quads`` (candidates on the rulings): where no ruling
+    within the stock is allowed, or the farthest one leaves a board shorter than
+    :data:`~dgpc_cli.strips.boards.SLIVER` of the stock, a cut inside a quad
+    (:func:`quad_cut`) that keeps
+    ``stagger`` from the joints ``quads`` lists (``(side, joints)``: side 0 or 1, A or B, and
+    arc lengths of the other pattern's joints on it)."""
     ea, eb = dev.cut_edges
     sa, sb = cumulative(ea), cumulative(eb)
     end = np.array([sa[-1], sb[-1]])
@@ -110,6 +121,17 @@ def greedy_pattern(dev: Development, candidates: np.ndarray, allowed: np.ndarray
                 hi = mid
         fit = [c for c in ahead[:lo][allowed[ahead[:lo]]][::-1]    # farthest first
                if board_extent(ea, sa, eb, sb, a, candidates[c]) <= stock][:1]
+        if not fit and quads is not None:
+            inside = quad_cut(dev, a, ahead, lo, stock, quads, stagger)
+            if inside is not None:
+                cuts.append(inside)
+                continue
+        if (fit and quads is not None          # a sliver at a ruling: inside the next quad
+                and board_extent(ea, sa, eb, sb, a, candidates[fit[0]]) < SLIVER * stock):
+            inside = quad_cut(dev, a, ahead, lo, stock, quads, stagger, after=fit[0] + 1.0)
+            if inside is not None:
+                cuts.append(inside)
+                continue
         if not fit:
             raise DgpcError(f"{name}: no cut of the template from {a.mean():.6g} on keeps a "
                             f"board within the stock length {stock:.6g} and the stagger from "
@@ -118,6 +140,41 @@ def greedy_pattern(dev: Development, candidates: np.ndarray, allowed: np.ndarray
         cuts.append(candidates[fit[0]])
     cuts.append(end)
     return Cuts(np.asarray(cuts))
+
+
+def quad_cut(dev: Development, a: np.ndarray, ahead: np.ndarray, lo: int, stock: float,
+             quads: list, stagger: float, after: float | None = None) -> np.ndarray | None:
+    """A cut ``(α, β)`` inside a planar quad of the template developed as ``dev`` (cut at its
+    rulings) after the cut ``a``, where the rulings ``ahead`` (indices of the interior rulings
+    beyond ``a``) offer none: the first ``lo`` of them lie within the stock. The cut is the
+    straight line at the fraction ``f`` of both sides of quad ``u`` (row ``t = u + f``), as
+    far as the stock allows, and, where ``quads`` names the other pattern's joints, at least
+    ``stagger`` from them (:func:`~dgpc_cli.strips.boards.cut_inside`); beyond the row
+    ``after``, by default the first ruling within the stock where there is one (or where the
+    board reaches half the stock, if that comes first). None where no such cut is."""
+    ea, eb = dev.cut_edges
+    sa, sb = cumulative(ea), cumulative(eb)
+    m = dev.A.shape[0]
+    rows = np.arange(m, dtype=float)
+
+    def cut(t):
+        return np.array([np.interp(t, rows, sa), np.interp(t, rows, sb)])
+
+    def extent(x, y):
+        return board_extent(ea, sa, eb, sb, cut(x), cut(y))
+
+    t0 = float(np.interp(a[0], sa, rows))
+    nxt = float(ahead[lo] + 1) if lo < len(ahead) else m - 1.0
+    if after is None and lo > 0:           # boards of half the stock on
+        after = min(float(ahead[0] + 1), last_within(extent, t0, nxt, 0.5 * stock))
+    sides = [((sa, sb)[side], np.asarray(joints, float)) for side, joints in quads]
+    t_max, t_ok = cut_inside(extent, t0, nxt, stock, sides, stagger, after=after)
+    if t_ok is None and lo == 0 and t_max is not None and after is None:
+        log.warning("a template cut inside quad %d keeps less than the stagger %.4g from the "
+                    "joints of the strips beside it: no cut within the stock keeps it there",
+                    int(t_max), stagger)
+        t_ok = t_max
+    return None if t_ok is None else cut(t_ok)
 
 
 def template_patterns(dev: Development, on_rulings: bool, stock: float, stagger: float,
@@ -130,13 +187,18 @@ def template_patterns(dev: Development, on_rulings: bool, stock: float, stagger:
     if not stagger >= 0:
         raise DgpcError(f"{stagger:g}: must be >= 0", source="--stagger")
     cand = candidate_cuts(dev, on_rulings)
-    p = greedy_pattern(dev, cand, np.ones(len(cand), bool), stock, name)
+    p = greedy_pattern(dev, cand, np.ones(len(cand), bool), stock, name,
+                       [] if on_rulings else None, stagger)
     allowed = np.ones(len(cand), bool)
+    quads = []
     if len(p.joints):
         allowed &= np.abs(cand[:, 0, None] - p.joints[None, :, 1]).min(axis=1) >= stagger
+        quads.append((0, p.joints[:, 1]))
         if both_sides:
             allowed &= np.abs(cand[:, 1, None] - p.joints[None, :, 0]).min(axis=1) >= stagger
-    return p, greedy_pattern(dev, cand, allowed, stock, name)
+            quads.append((1, p.joints[:, 0]))
+    return p, greedy_pattern(dev, cand, allowed, stock, name, quads if on_rulings else None,
+                             stagger)
 
 
 def cut_params(dev: Development, along: np.ndarray) -> np.ndarray:
