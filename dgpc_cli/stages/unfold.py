@@ -26,6 +26,7 @@ from dgpc_cli.strips.boards import (
     edge_path,
     fractional,
     knots,
+    snapped,
     split_boards,
     strip_between,
 )
@@ -76,6 +77,7 @@ def row_span(a: float, b: float) -> dict:
     """``rows``: the net rows ``[floor(a), ceil(b)]`` a part from row ``a`` to row ``b``
     reaches into; and where an end is fractional (a joint inside the planar quad ``u`` at the
     fraction ``f`` of its sides: row ``u + f``) ``row_span``, ``[a, b]``."""
+    a, b = snapped(a), snapped(b)
     out = {"rows": [int(np.floor(a)), int(np.ceil(b))]}
     if fractional(a) or fractional(b):
         out["row_span"] = [float(a), float(b)]
@@ -294,11 +296,11 @@ def template_boards(devs: list[Development], ids: list[str], columns: list[int],
         for k in range(len(along) - 1):
             g = board_geometry(d, along[k], along[k + 1], ts[k], ts[k + 1])
             name = f"{ids[i]}.{k + 1}"
-            t0, t1 = float(ts[k, :, 0].min()), float(ts[k + 1, :, 0].max())
+            t0, t1 = snapped(ts[k, :, 0].min()), snapped(ts[k + 1, :, 0].max())
             span = ({"row_span": [t0, t1]} if on_rulings and (fractional(t0) or fractional(t1))
                     else {})
             parts.append({"id": name, "strip": int(columns[i]), "board": k + 1,
-                          "rows": [int(np.floor(t0 + 1e-9)), int(np.ceil(t1 - 1e-9))], **span,
+                          "rows": [int(np.floor(t0)), int(np.ceil(t1))], **span,
                           "positions": [float(along[k].mean()), float(along[k + 1].mean())],
                           "cuts": [{"along": along[j].tolist(), "A": ts[j, 0].tolist(),
                                     "B": ts[j, 1].tolist(),
@@ -592,6 +594,7 @@ def trimmed_boards(geometry, devs, ids, columns, trims, congruence_tol, mirror_o
                        for k, (a, b) in enumerate(zip(ends[:-1], ends[1:], strict=True))]
     parts, entire, cut = [], [], []
     for i, pid, k, a, b, ring in boards:
+        a, b = snapped(a), snapped(b)
         A, B = (np.asarray(X, float) for X in geometry[i])
         along = 0.5 * (along_a[i] + along_b[i])
         r0, r1 = int(np.floor(a)), int(np.ceil(b))

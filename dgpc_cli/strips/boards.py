@@ -67,6 +67,11 @@ def fractional(t: float) -> bool:
     return abs(float(t) - float(np.round(t))) > 1e-9
 
 
+def snapped(t: float) -> float:
+    """The row ``t``, on its ruling where it lies there to round-off (:func:`fractional`)."""
+    return float(t) if fractional(t) else float(np.round(t))
+
+
 def knots(a: float, b: float) -> np.ndarray:
     """The rows of a board from ``t = a`` to ``t = b``: ``a``, the rows strictly between,
     ``b`` (fractional ends where a joint cuts inside a quad)."""
