@@ -87,3 +87,30 @@ def test_overlay_has_a_scale_bar_and_errors_with_a_unit(tmp_path):
     assert len(spans) == 1                                # one scale for every cell
     for ax in cells:
         assert ax.get_title().rstrip().endswith(" mm"), ax.get_title()
+
+
+def test_overlay_of_many_long_classes_draws_those_that_fit_and_says_so():
+    """133 classes of 6 m × 0.1 m boards (an arched roof's trimmed boards come so) do not fit
+    one page legibly: the overlay draws the classes of the largest quantity in cells at least
+    MIN_CELL wide and says how many are left out (it used to fail on cells of negative height)."""
+    from dgpc_cli.report.flat import MIN_CELL, overlay_figure
+
+    parts, classes = [], []
+    for k in range(133):
+        parts.append({"id": f"P{k}", "outline": [[0, 0], [6000, 0], [6000, 100 + k % 7],
+                                                  [0, 100 + k % 7]], "score": [],
+                      "alignment": {"matrix": [[1, 0], [0, 1]], "translation": [0, 0]}})
+        classes.append({"id": f"C{k:03d}", "representative": f"P{k}", "members": [f"P{k}"],
+                        "quantity": 1 + (k % 3 == 0), "max_error": 0.0})
+    fig = overlay_figure(parts, classes, "mm")
+    cells = [ax for ax in fig.axes if (ax.get_gid() or "").startswith("class-")]
+    shown = {ax.get_gid()[len("class-"):] for ax in cells}
+    assert 1 < len(shown) < len(classes)
+    assert f"{len(shown)} of the largest quantity shown, {len(classes) - len(shown)} more" \
+        in fig._suptitle.get_text()
+    # the classes of quantity 2 come first
+    assert {c["id"] for c in classes if c["quantity"] == 2} <= shown
+    width, _ = fig.get_size_inches()
+    for ax in cells:
+        box = ax.get_position()
+        assert box.width * width >= MIN_CELL - 0.1 - 1e-9 and box.height > 0

@@ -37,6 +37,11 @@ CUT, SCORE, FILL = (0.8, 0.0, 0.0), (0.0, 0.0, 0.85), (0.95, 0.95, 0.95)
 GAP = 0.35
 #: Height (inches) of the band under the overlay's cells that holds its scale bar.
 BAR_BAND = 0.45
+#: Narrowest overlay cell (inches): with more classes than fit so, the overlay draws those of
+#: the largest quantity and says how many it leaves out (every class is in the cut list).
+MIN_CELL = 0.8
+#: Least height (inches) of a part's drawing in an overlay cell (over the cell's title).
+MIN_DRAWING = 0.06
 
 
 def principal_rotation(points: np.ndarray) -> np.ndarray:
@@ -80,6 +85,22 @@ def _grid_shape(count: int, aspect: float) -> tuple[int, int, float]:
     return best
 
 
+def shown_classes(classes: list[dict], aspect: float) -> list[dict]:
+    """The classes the overlay draws: all of them where every cell fits :data:`PAGE` at least
+    :data:`MIN_CELL` wide (its drawing :data:`MIN_DRAWING` tall), else as many as do, those of
+    the largest quantity first (ties by id), in their own order."""
+
+    def legible(count: int) -> bool:
+        width = _grid_shape(count, aspect)[2]
+        return width >= MIN_CELL and width / aspect >= MIN_DRAWING
+
+    count = len(classes)
+    while count > 1 and not legible(count):
+        count -= 1
+    keep = {id(c) for c in sorted(classes, key=lambda c: -c["quantity"])[:count]}
+    return [c for c in classes if id(c) in keep]
+
+
 def error_text(error: float, units: str) -> str:
     """A class's largest error ``error`` (in ``units``) as a length in mm, e.g. ``0.031 mm``
     (errors of congruent parts are well under a millimetre, whatever the model's unit)."""
@@ -103,6 +124,10 @@ def overlay_figure(parts: list[dict], classes: list[dict], units: str):
         drawings.append((cls, outlines, scores))
     extents = [np.ptp(np.concatenate(o), axis=0) for _, o, _ in drawings]
     aspect = max(max(e[0] / max(e[1], 1e-12 * e[0]) for e in extents), 1.0)
+    every, classes = classes, shown_classes(classes, aspect)
+    shown = {id(c) for c in classes}
+    kept = [k for k, (c, _, _) in enumerate(drawings) if id(c) in shown]
+    drawings, extents = [drawings[k] for k in kept], [extents[k] for k in kept]
     cols, rows, width = _grid_shape(len(classes), aspect)
     cell_h = width / aspect + 0.32
     fig = figure(PAGE[0], min(PAGE[1], rows * cell_h + 0.9) + BAR_BAND)
@@ -140,9 +165,11 @@ def overlay_figure(parts: list[dict], classes: list[dict], units: str):
     bar_ax.set_ylim(0.0, 1.0)
     bar_ax.set_axis_off()
     scale_bar_at(bar_ax, 0.05 * half_w, 0.75, nice_length(0.25 * span), units, LABEL_PT)
+    left_out = (f" ({len(classes)} of the largest quantity shown, {len(every) - len(classes)} "
+                "more in the cut list)" if len(classes) < len(every) else "")
     fig.suptitle(f"{counted(len(parts), 'part')} in "
-                 f"{counted(len(classes), 'congruence class', 'congruence classes')}, each "
-                 "overlaid on "
+                 f"{counted(len(every), 'congruence class', 'congruence classes')}{left_out}, "
+                 "each overlaid on "
                  f"its representative (one scale, length of the longest "
                  f"{span:.4g} {units}; error: largest distance between matching outline "
                  "points)", fontsize=TITLE_PT - 1, y=0.995, wrap=True)
