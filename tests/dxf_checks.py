@@ -26,7 +26,7 @@ QUANTUM = 1e-6
 
 
 #: The text of a part's end mark (its first row's number, ``R0``), drawn with the labels.
-END_MARK = re.compile(r"R\d+")
+END_MARK = re.compile(r"R\d+(\.\d+)?")
 
 def _rounded(p) -> tuple[int, int]:
     return int(round(p[0] / QUANTUM)), int(round(p[1] / QUANTUM))

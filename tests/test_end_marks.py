@@ -8,8 +8,9 @@ from cli_helpers import dgpc, revolution_strips
 from dxf_checks import END_MARK
 from shapely.geometry import LineString, Point, Polygon
 
-from dgpc_cli.io.flat import read_flat
+from dgpc_cli.io.flat import first_row, read_flat
 from dgpc_cli.io.sheets import read_sheets, transform
+from dgpc_cli.nesting.end_mark import row_text
 
 SCALE = 10.0            # the net in cm, ten times: 1 net unit = 100 mm
 MM = 10.0 * SCALE
@@ -67,7 +68,7 @@ def test_every_sheet_part_has_its_end_mark_at_its_first_row(sample, flat_stem, s
                                               Point(c[2]).distance(first))
             assert not any(LineString(c).intersects(line) for line in score)
             texts = [t for t, at in rows if outline.contains(Point(at))]
-            assert texts == [f"R{part['rows'][0]}"]
+            assert texts == [row_text(first_row(part))]
             checked += 1
     assert checked == len(flat) > 0
 
@@ -84,3 +85,14 @@ def test_template_has_its_end_mark(sample):
         assert len(chevrons) == 1 and len(rows) == 1
         assert cut.contains(LineString(chevrons[0]))
         assert cut.contains(Point(rows[0][1]))
+
+
+def test_a_board_cut_inside_a_quad_is_marked_with_its_fractional_row():
+    """A board whose first end is a joint inside quad 3 at 0.5512 of its sides starts at row
+    3.5512: its mark reads R3.55, not R3 (the ruling it does not reach)."""
+
+    record = {"rows": [3, 7], "row_span": [3.5512, 7.0]}
+    assert first_row(record) == 3.5512
+    assert row_text(first_row(record)) == "R3.55"
+    assert row_text(first_row({"rows": [4, 9]})) == "R4"
+    assert row_text(0.999999) == "R1"

@@ -117,6 +117,12 @@ def part_row(part: dict, mm: float) -> dict:
             "area_mm2": f"{mm * mm * part['area']:.2f}"}
 
 
+def first_row(part: dict) -> float:
+    """The net row of a part record's first end: fractional (``row_span``) where a joint cuts
+    it inside a quad."""
+    return float(part.get("row_span", part.get("rows", [0]))[0])
+
+
 def row_columns(part: dict) -> dict:
     """``row_start``, ``row_stop`` of a part record: its net rows, or the fractional rows of
     its ends (``row_span``) where a joint cuts it inside a quad."""

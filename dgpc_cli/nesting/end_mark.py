@@ -78,11 +78,18 @@ def _shapes(e, d, n, t: float, h: float, text: str, beside: bool):
     return chevron, Label(text, (float(at[0]), float(at[1])), h, rotation)
 
 
-def end_mark(outline, score, A, B, row: int) -> EndMark | None:
+def row_text(row: float) -> str:
+    """The end mark's text for the first row ``row``: ``R4``, or ``R3.55`` where a joint cuts
+    the part inside a quad (a fractional row, to two decimals)."""
+    return "R" + f"{float(row):.2f}".rstrip("0").rstrip(".")
+
+
+def end_mark(outline, score, A, B, row: float) -> EndMark | None:
     """The end mark of a part (``outline``, ``score`` lines, geodesics ``A, B (m, 2)`` in mm,
-    its first row ``row`` at ``A[0], B[0]``) in its first cell, or in its second where the
-    first (a board's end cut just short of a ruling) is too short, never beyond the part's
-    half-length; None when no mark of :data:`MIN_MARK_MM` fits."""
+    its first row ``row`` at ``A[0], B[0]``, fractional where a joint cuts it inside a quad)
+    in its first cell, or in its second where the first (a board's end cut just short of a
+    ruling) is too short, never beyond the part's half-length; None when no mark of
+    :data:`MIN_MARK_MM` fits."""
     A, B = np.asarray(A, float), np.asarray(B, float)
     if len(A) < 2:
         return None
@@ -101,7 +108,7 @@ def end_mark(outline, score, A, B, row: int) -> EndMark | None:
         if len(A) == 2:
             limit = near + ONE_CELL_REACH * (limit - near)
         limit = min(limit, half)                     # nearer the first end than the other
-        found = _fit(e, d, n, top, near, limit, f"R{int(row)}", room, cell, scored)
+        found = _fit(e, d, n, top, near, limit, row_text(row), room, cell, scored)
         if found is not None:
             return EndMark(*found, cell=k)
     return None

@@ -20,6 +20,7 @@ import shapely
 from scipy.spatial import cKDTree
 from shapely.geometry import Polygon
 
+from ..io.flat import first_row
 from ..io.sheets import rotation_matrix, transform
 
 __all__ = ["rotation_matrix", "transform"]  # the placement of the sheets artifact, used here
@@ -75,7 +76,7 @@ class Part:
     nfp_outline: np.ndarray | None = field(default=None, repr=False)
     shape_rotation: float = 0.0
     shape_offset: tuple = (0.0, 0.0)
-    row: int = 0
+    row: float = 0.0
 
 
 def _convex(poly: np.ndarray) -> bool:
@@ -199,7 +200,7 @@ def prepare_parts(flat_parts: list[dict], k: float, tol: float = GROUP_TOL_MM,
             score=[k * np.asarray(s, float) for s in rec["score"]],
             label=k * np.asarray(rec["label"], float), geodesics=geod,
             area=float(poly.area), pieces=pieces, deviation=simplified_by,
-            nfp_outline=simple, row=int(rec.get("rows", [0])[0])))
+            nfp_outline=simple, row=first_row(rec)))
     polys = [Polygon(p.outline) for p in parts]
     centroid = {id(p): np.asarray(g.centroid.coords[0]) for p, g in zip(parts, polys, strict=True)}
     perimeter = {id(p): g.length for p, g in zip(parts, polys, strict=True)}

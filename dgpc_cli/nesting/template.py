@@ -29,6 +29,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..io.dxf import Drawing
+from ..io.flat import first_row
 from .drawing import draw_end_marks, draw_labels, part_end_mark, sheet_layers
 from .end_mark import beyond
 from .labels import MIN_TEXT_MM, place_labels
@@ -118,7 +119,7 @@ def _drawing(part: dict, low: np.ndarray, texts: list[str], label_style: str) ->
     score = [np.asarray(s, float) + shift for s in part["score"]]
     A, B = (np.asarray(g, float) + shift for g in part["geodesics"])
     mark = part_end_mark({"outline": outline, "score": score, "geodesics": (A, B),
-                          "row": part.get("rows", [0])[0]})
+                          "row": first_row(part)})
     pieces = [{"id": text, "outline": outline, "score": score,
                "label": np.asarray(part["label"], float) + shift,
                "geodesics": beyond(A[a:b + 1], B[a:b + 1], mark if a == 0 else None)}
