@@ -6,6 +6,8 @@ outline)."""
 import numpy as np
 import pytest
 
+from dgpc_cli.errors import DgpcError
+from dgpc_cli.stages.soundness import require_sound_strips
 from dgpc_cli.strips.crossing import backward, folded_inside, folds
 
 
@@ -38,3 +40,21 @@ def test_a_part_is_folded_only_where_it_covers_the_fold():
     assert not folded_inside(A, B, P, Q, [[(0, 0), (2, 0), (2, 1), (0, 1)]])
     # a part that reaches into the fold's corner
     assert folded_inside(A, B, P, Q, [[(0, 0.5), (2.5, 0.05), (5, 0.5), (5, 1), (0, 1)]])
+
+
+def test_without_the_net_the_fold_is_found_against_the_middle_line():
+    A, B, _, _ = _strip()
+    [(row, s0, s1)] = folds(A, B)
+    assert (row, s0) == (2, 0.0) and s1 == pytest.approx(1 / 6)
+
+
+def test_unfold_refuses_a_trimmed_strip_only_where_a_part_covers_its_fold():
+    """``unfold``'s gate: the fold's rows lie in the part's row span either way; refused only
+    where the part's outline covers the fold."""
+    A, B, _, _ = _strip()
+    span = [[[0, 5]]]
+    with pytest.raises(DgpcError, match="S-v00 is folded"):
+        require_sound_strips([(A, B)], ["S-v00"], "s.json", span,
+                             [[[(0, 0), (5, 0), (5, 1), (0, 1)]]])
+    require_sound_strips([(A, B)], ["S-v00"], "s.json", span,
+                         [[[(0, 0.5), (5, 0.5), (5, 1), (0, 1)]]])

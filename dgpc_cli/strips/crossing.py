@@ -16,12 +16,16 @@ def backward(X: np.ndarray, curve: np.ndarray) -> np.ndarray:
     return np.einsum("ij,ij->i", np.diff(X, axis=0), np.diff(curve, axis=0)) <= 0
 
 
-def folds(A: np.ndarray, B: np.ndarray, P: np.ndarray, Q: np.ndarray) -> np.ndarray:
+def folds(A: np.ndarray, B: np.ndarray, P: np.ndarray | None = None,
+          Q: np.ndarray | None = None) -> np.ndarray:
     """``(k, 3)``: the folded regions of the strip ``A, B (m, 3)`` cut from the geodesics
     ``P, Q (m, 3)``, each ``(row, s0, s1)``: the quad between rows ``row`` and ``row + 1``,
     from ``s0`` to ``s1`` across (from the side that runs backwards to where the two rulings
-    meet; the whole quad when they meet outside it)."""
+    meet; the whole quad when they meet outside it). Without the geodesics (a strips artifact
+    alone) a side runs backwards against the strip's middle line."""
     A, B = np.asarray(A, float), np.asarray(B, float)
+    if P is None or Q is None:
+        P = Q = 0.5 * (A + B)
     bad_a, bad_b = backward(A, P), backward(B, Q)
     rows = np.nonzero(bad_a | bad_b)[0]
     if not rows.size:
