@@ -116,3 +116,13 @@ def test_strip_width_goes_with_a_mesh():
     r = dgpc("init", "--surface", "revolution", "--profile", "cone", "--rows", 5, "--cols", 5,
              "--strip-width", "1m", "-o", "x", expect=2)
     assert "--strip-width goes with REFERENCE" in r.stderr
+
+
+def test_a_projected_net_is_made_finer_too(cap, tmp_path):
+    """--method project: the same rule, the grid made again with more columns."""
+    dgpc("init", cap, "--method", "project", "--units", "m", "--strip-width", "0.3m",
+         "-o", tmp_path / "n")
+    record = _record(tmp_path / "n")
+    assert record["steps"][0]["widest"] > LIMIT and record["within"]
+    assert read_net(tmp_path / "n").shape[1] == record["cols"] > 21
+    assert _widest(tmp_path / "n") <= LIMIT * (1 + 1e-9)
