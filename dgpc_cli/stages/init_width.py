@@ -24,8 +24,12 @@ from typing import TypeVar
 
 import numpy as np
 
+from dgpc_cli.core.reference import ReferenceSurface
+from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.units import mm_per_unit
+from dgpc_cli.metrics.coverage import default_tolerance
 from dgpc_cli.metrics.width_ratio import widest_strip
+from dgpc_cli.stages.init_mesh import DEFAULT_COLS
 
 log = logging.getLogger(__name__)
 
@@ -152,11 +156,6 @@ def widened_choice(mesh, first: tuple, make: Callable[[int], tuple], cols: int |
     with ``cols`` columns, None: the default) within the largest strip width ``limit`` on
     ``mesh``: when ``widen_cols``, made again by ``make(n)`` (``choose`` with ``n`` columns)
     while too wide (:func:`widen`); the choice kept and its :func:`width_record`."""
-    from dgpc_cli.core.reference import ReferenceSurface
-    from dgpc_cli.errors import DgpcError
-    from dgpc_cli.metrics.coverage import default_tolerance
-    from dgpc_cli.stages.init_mesh import DEFAULT_COLS
-
     surface = ReferenceSurface(mesh.vertices, mesh.faces)
     tolerance = default_tolerance(mesh.vertices)
 
