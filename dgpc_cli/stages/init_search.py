@@ -190,13 +190,16 @@ def _rank(trials: list[Trial], limit: float | None = None) -> tuple[Trial, str]:
     unfolded = [t for t in scored if not t.quick["folded"]]
     folded = len(scored) - len(unfolded)
     pool = unfolded or scored
-    pool = [t for t in pool if _fits(t, limit)] or pool
+    fitting = [t for t in pool if _fits(t, limit)]
+    narrow = (f"; {len(pool) - len(fitting)} with strips wider than {limit:.3g} left out"
+              if fitting and len(fitting) < len(pool) else "")
+    pool = fitting or pool
     best = max(t.quick["coverage"] for t in pool)
     close = [t for t in pool if t.quick["coverage"] >= best - COVERAGE_SLACK]
     least = min(t.quick.get("width_ratio", math.inf) for t in close)
     chosen = next(t for t in close
                   if t.quick.get("width_ratio", math.inf) <= least * (1 + WIDTH_SLACK))
-    note = f"; {folded} folded in the quick fit" if folded and unfolded else ""
+    note = (f"; {folded} folded in the quick fit" if folded and unfolded else "") + narrow
     if len(close) == 1:
         rest = sorted((t for t in pool if t is not chosen), key=_cover, reverse=True)
         runner = (f", next {rest[0].describe()} {100 * _cover(rest[0]):.1f} %" if rest else "")
