@@ -118,6 +118,18 @@ def parse_direction(text: str | None):
                                "unless --rows is given), > 0.",
                                where="in the model's unit (--units)"))
 @old_name("--spacing", "--edge-length", type=LengthParam(min=0, min_open=True))
+@click.option("--strip-width", "strip_width", type=LengthParam(min=0, min_open=True),
+              metavar="LENGTH",
+              help=length_help("With a mesh: the largest strip width, > 0: no strip of the net "
+                               "is wider anywhere along it (its v-edges on the mesh). Where "
+                               "init chooses the columns (no --cols or --edge-length) a net "
+                               "too wide is made again with more columns (stderr and "
+                               "data.init.choice.strip_width say so); given --cols or "
+                               "--edge-length win, and init only warns. Default with --units: "
+                               "2.4m, the width of a 2500 mm sheet (nest --sheet 6100x2500) "
+                               "less its margins and some room for a board that curves; "
+                               "without --units, none (the mesh's size is not known).",
+                               where="in the model's unit (--units)"))
 @click.option("--span", "span", type=FiniteFloat(min=0, min_open=True, max=360), default=180.0,
               show_default=True,
               help="--surface: angle covered by the v-lines, degrees (360: a full ring).")
@@ -138,16 +150,17 @@ def parse_direction(text: str | None):
 @format_opt
 @click.pass_context
 def init(ctx, reference, surface, profile, method, base, direction, angle, from_quads,
-         largest_component, extend, patches, rows, cols, spacing, span, twist, reference_out, units,
-         output, force, fmt):
+         largest_component, extend, patches, rows, cols, spacing, strip_width, span, twist,
+         reference_out, units, output, force, fmt):
     """Make an initial m×n net (u-lines: the geodesics).
 
     \b
     dgpc init --surface revolution --profile NAME|FILE --rows M --cols N -o STEM
     dgpc init MESH [--method geodesic] [--base auto|section|boundary|bK] [--direction x,y,z]
-              [--angle DEG] [--rows M] [--cols N|--edge-length L] [--extend F] -o STEM
+              [--angle DEG] [--rows M] [--cols N|--edge-length L] [--strip-width W]
+              [--extend F] -o STEM
     dgpc init MESH --method project [--direction x,y,z] [--angle DEG] [--rows M]
-              [--cols N|--edge-length L] [--extend F] -o STEM
+              [--cols N|--edge-length L] [--strip-width W] [--extend F] -o STEM
     dgpc init MESH --method geodesic|project --patches auto|K [...] -o STEM
     dgpc init --from-quads NET.obj [MESH] -o STEM
 
@@ -176,6 +189,8 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
             raise click.UsageError("--base goes with --method geodesic")
         if base not in (None, "auto", "section") and (direction is not None or angle is not None):
             raise click.UsageError(f"--base {base} takes no --direction or --angle")
+    if strip_width is not None and not method:
+        raise click.UsageError("--strip-width goes with REFERENCE and --method")
     if patches is not None and not method:
         raise click.UsageError("--patches goes with REFERENCE and --method")
     if patches is not None and base not in (None, "auto", "section", "boundary"):
@@ -192,6 +207,8 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     units = units or DEFAULT_UNITS
     if spacing is not None:
         spacing = spacing.in_units(units, artifact_units=units)
+    if strip_width is not None:
+        strip_width = strip_width.in_units(units, artifact_units=units)
     check_writable(output, force, *([reference_out] if reference_out else []))
     say = (lambda text: click.echo(text, err=True)) if show_progress(ctx) else None
     written = init_nets(output, units=units, units_given=given_units is not None, fmt=fmt,
@@ -200,6 +217,7 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
                         angle=angle, rows=rows, cols=cols, spacing=spacing, span=span,
                         twist=twist, reference_out=reference_out,
                         largest_component=largest_component, extend=extend, patches=patches,
+                        strip_width=strip_width,
                         check=check_writable, status=lambda: StatusLine(ctx, "init"), say=say)
     for path in written:
         click.echo(str(path))

@@ -22,6 +22,7 @@ from dgpc_cli.stages.planarize import (
     POLISH_ABOVE,
     RULING_FAIRNESS,
     SEAM_WEIGHT,
+    crossed_strips,
     parse_strip_range,
     planarize_strips,
     strips_metrics,
@@ -141,7 +142,7 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
     out_json, _ = artifact_paths(output)
     polished = [s for s in strips if s.polish.get("applied")]
     failed = [s.id for s in polished if s.polish.get("status") != "converged"]
-    crossed = [s.id for s in strips if not s.rulings_ordered]
+    crossed = crossed_strips(strips, records, net.f)
     art = StripsArtifact(
         geometry=[(s.A, s.B) for s in strips], records=records,
         source_shape=(m, n), units=net.units,

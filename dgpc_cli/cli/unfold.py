@@ -95,6 +95,8 @@ def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_st
     strips = read_strips(stem)
     require_sound_strips(strips.geometry, [r["id"] for r in strips.records], json_path,
                          [[p["rows"] for p in r["trim"]["parts"]] if r.get("trim") else None
+                          for r in strips.records],
+                         [[p["outline"] for p in r["trim"]["parts"]] if r.get("trim") else None
                           for r in strips.records])
     units = strips.units                 # computed in mm (dgpc_cli.io.units)
     stock_mm = None if stock_length is None else stock_length.to_mm(units)

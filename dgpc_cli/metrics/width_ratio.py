@@ -36,3 +36,16 @@ def width_figures(f, keep: np.ndarray | None = None) -> dict | None:
     keep = np.ones(w.shape, bool) if keep is None else np.asarray(keep, bool)
     return {"width_ratio": float(counted.max()),
             "narrowest": float(w[keep].min() / w[keep].mean())}
+
+
+def widest_strip(f, keep: np.ndarray | None = None) -> tuple[float, int] | None:
+    """The widest v-edge of the net ``f (m, n, 3)`` where ``keep (m, n−1)`` is True (default:
+    all): its length (the strip's width at that row, in the net's unit) and the strip ``j`` it
+    belongs to; None when nothing is kept."""
+    w = strip_widths(f)
+    if keep is not None:
+        w = np.where(np.asarray(keep, bool), w, -np.inf)
+    k = int(np.argmax(w))
+    if not np.isfinite(w.flat[k]):
+        return None
+    return float(w.flat[k]), int(np.unravel_index(k, w.shape)[1])

@@ -20,6 +20,7 @@ from dgpc_cli.io.units import UNIT_NAMES
 from dgpc_cli.stages.init import init_revolution
 from dgpc_cli.stages.init_mesh_net import Status, mesh_net
 from dgpc_cli.stages.init_patch_nets import patch_nets
+from dgpc_cli.stages.init_width import default_limit
 from dgpc_cli.stages.inspect import summarize
 from dgpc_cli.stages.patch_set_run import write_patch_set
 
@@ -43,11 +44,14 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
               spacing: float | None = None, span: float = 180.0, twist: float = 0.0,
               reference_out: Path | None = None, largest_component: bool = False,
               extend: float | None = None, patches=None, status: Status = nullcontext,
-              say: Callable[[str], None] | None = None) -> list[Path]:
+              say: Callable[[str], None] | None = None,
+              strip_width: float | None = None) -> list[Path]:
     """Make and write the nets of ``dgpc init`` (its options checked and their lengths in
-    ``units``); the JSON paths written. ``check(stem, force, *extra)`` refuses a patch net's
-    target before any is written; ``status`` makes the status line of the geodesic search;
-    ``say``, when given, gets the stderr lines that say what was made."""
+    ``units``; ``strip_width``: ``--strip-width``, None when not given: on a mesh the default
+    of ``stages.init_width`` where ``init`` chooses the columns); the JSON paths written.
+    ``check(stem, force, *extra)`` refuses a patch net's target before any is written;
+    ``status`` makes the status line of the geodesic search; ``say``, when given, gets the
+    stderr lines that say what was made."""
     json_path, _ = artifact_paths(output)
     folder = json_path.resolve().parent
     files = {}
@@ -59,10 +63,16 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
         if result.reference_obj is not None:
             files[reference_out] = result.reference_obj
     elif method:
+        given_width = strip_width is not None
+        if not given_width and cols is None and spacing is None:
+            strip_width = default_limit(units, units_given)
         made = mesh_net(reference, method, base=base, direction=direction, angle=angle,
                         rows=rows, cols=cols, spacing=spacing,
                         largest_component=largest_component, extend=extend, status=status,
-                        say=say)
+                        say=say, strip_width=strip_width, strip_width_given=given_width,
+                        units=units)
+        if given_width:
+            made.net.parameters["strip_width"] = strip_width
         net, mesh = made.net, made.mesh
         switched = patches is None and made.poor is not None and _search_chooses(
             method, base, direction, angle, extend, rows, cols, spacing)
@@ -78,7 +88,9 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
                                   "spacing": spacing,
                                   "extend": net.parameters.get("extend", 0.0),
                                   "given_extend": extend,
-                                  "largest_component": largest_component},
+                                  "largest_component": largest_component,
+                                  "strip_width": strip_width,
+                                  "strip_width_given": given_width, "units": units},
                                  units=units, fmt=fmt, force=force, check=check, say=say,
                                  switched=switched)
             if written:
@@ -90,6 +102,16 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
         elif made.poor and say is not None:
             say(f"init: {made.poor}; --patches auto cuts the mesh into patches, one net each, "
                 "where one net's strips vary in width more than 3x")
+        if made.narrowed is not None:
+            # one net kept: now made within the largest strip width, with what the patches
+            # recorded of it
+            kept = made.narrowed().net
+            if "patches" in net.data:
+                kept.parameters["patches"] = net.parameters["patches"]
+                kept.data["patches"] = net.data["patches"]
+            if given_width:
+                kept.parameters["strip_width"] = strip_width
+            net = kept
     else:
         from dgpc_cli.stages.init_quads import init_from_quads
 

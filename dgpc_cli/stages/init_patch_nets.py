@@ -30,6 +30,10 @@ def _record_choice(net: NetArtifact, label: str, outcome, tried: list, options: 
                                   "tried": tried}
     if searched:
         net.data["init"]["choice"]["search"] = net.data["init"].pop("search")
+    if "strip_width" in net.data["init"]:
+        net.data["init"]["choice"]["strip_width"] = net.data["init"].pop("strip_width")
+    if options.get("strip_width_given"):
+        net.parameters["strip_width"] = options["strip_width"]
     if outcome.note:
         log.warning("%s", outcome.note)
 
@@ -40,21 +44,38 @@ def _searched(m, whole, options: dict):
     single net, its overhang running onto the whole mesh around the patch
     (``geodesics.extension.surrounded``; the net's ``data.surroundings``, the whole mesh, tells
     ``optimize`` to fit it there); the search's record rides on the net
-    (``data.init.search``) until the choice is recorded."""
+    (``data.init.search``, and its largest strip width ``data.init.strip_width``) until the
+    choice is recorded. ``(grid, outcome, tried, narrowed)``: ``narrowed()`` makes the net
+    within the largest strip width, once the patches are decided by the nets as chosen
+    (None: nothing to do)."""
     from dgpc_cli.stages.init_mesh import DEFAULT_COLS
     from dgpc_cli.stages.init_search import search
 
     cols = options["cols"]
-    if cols is None and options["spacing"] is None:
-        cols = DEFAULT_COLS         # a patch is smaller than the whole: its size not searched
+    widen_cols = cols is None and options["spacing"] is None
+    if widen_cols:
+        # a patch is smaller than the whole: its size not searched, only made finer where its
+        # strips are wider than the largest strip width
+        cols = DEFAULT_COLS
     found = search(m, base=options["base"], direction=options["direction"],
                    angle=options["angle"], rows=options["rows"], cols=cols,
-                   spacing=options["spacing"], extend=None, surroundings=whole)
+                   spacing=options["spacing"], extend=None, surroundings=whole,
+                   strip_width=options.get("strip_width"),
+                   strip_width_given=bool(options.get("strip_width_given")),
+                   widen_cols=widen_cols, defer_width=True)
+    later = found.narrowed
+    return (*_found_net(found), (lambda: _found_net(later())) if later is not None else None)
+
+
+def _found_net(found):
+    """``(grid, outcome, tried)`` of a patch's search result, its records on the net."""
     net = found.grid.net
     if found.extend > 0:
         net.parameters["extend"] = found.extend
         net.data["init"]["overhang_onto"] = "the mesh around the patch"
     net.data["init"]["search"] = found.record
+    if found.width is not None:
+        net.data["init"]["strip_width"] = found.width
     return found.grid, found.outcome, [t.record for t in found.trials]
 
 
@@ -77,7 +98,8 @@ def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, 
         surrounded,
     )
     from dgpc_cli.stages.init_choice import choose
-    from dgpc_cli.stages.init_patches import plan, ratio_text
+    from dgpc_cli.stages.init_patches import narrowed, plan, ratio_text
+    from dgpc_cli.stages.init_width import tell, widened_choice
     from dgpc_cli.stages.inspect import summarize
 
     def make(m):
@@ -94,14 +116,23 @@ def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, 
                         "boundary; extended by %.3g of the patch's diagonal instead",
                         m.path.name, options["extend"], fraction)
             domain = continued(m, fraction)
-        grid, outcome, tried = choose(
-            m, domain, options["method"], base=options["base"],
-            direction=options["direction"], angle=options["angle"], rows=options["rows"],
-            cols=options["cols"], spacing=options["spacing"],
-            extend_length=fraction * m.bbox_diagonal)
+
+        def chosen(n):
+            return choose(m, domain, options["method"], base=options["base"],
+                          direction=options["direction"], angle=options["angle"],
+                          rows=options["rows"], cols=n, spacing=options["spacing"],
+                          extend_length=fraction * m.bbox_diagonal)
+
+        grid, outcome, tried = chosen(options["cols"])
+        if options.get("strip_width") is not None:
+            (grid, outcome, tried), width = widened_choice(
+                m, (grid, outcome, tried), chosen, options["cols"], options["strip_width"],
+                bool(options.get("strip_width_given")),
+                options["cols"] is None and options["spacing"] is None)
+            grid.net.data["init"]["strip_width"] = width
         if fraction > 0:
             grid.net.parameters["extend"] = fraction
-        return grid, outcome, tried
+        return grid, outcome, tried, None
 
     json_path, _ = artifact_paths(output)
     stem = json_path.with_suffix("")
@@ -127,6 +158,7 @@ def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, 
         return None
     for k, p in enumerate(nets, start=1):     # every target checked before any is written
         check(stem.parent / f"{stem.name}.p{k}", force, p.mesh.path)
+    nets = [narrowed(p) for p in nets]
     written = []
     for k, p in enumerate(nets, start=1):
         net = p.net
@@ -151,5 +183,7 @@ def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, 
             say(f"init: {out.name}: {p.label}, {net.shape[0]} x {net.shape[1]} net "
                 f"covering {100 * p.outcome.coverage:.1f} % of its patch, strips "
                 f"varying up to {ratio_text(p.width['ratio'])} in width")
+        tell(net.data["init"]["choice"].get("strip_width"), options.get("units", ""), say,
+             what=f"{out.name}: ")
         written.append(artifact_paths(out)[0])
     return written

@@ -22,6 +22,7 @@ and figures) and every patch's area, coverage and width ratio.
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import logging
 from collections.abc import Callable
@@ -77,7 +78,8 @@ def width_ratio(f: np.ndarray, mesh: ReferenceMesh) -> dict:
 @dataclass
 class PatchNet:
     """One patch, the mesh made of it (``mesh.path``: the OBJ it is to be written to) and its
-    OBJ bytes, the net made on it, the choice's outcome and candidates, its width ratio."""
+    OBJ bytes, the net made on it, the choice's outcome and candidates, its width ratio, and
+    how to make its net within the largest strip width (``stages.init_width``; None: it is)."""
 
     patch: Patch
     mesh: ReferenceMesh
@@ -87,10 +89,12 @@ class PatchNet:
     tried: list
     width: dict
     label: str
+    narrowed: Callable[[], tuple] | None = None
 
 
-#: Makes a net on a mesh: ``(mesh) -> (grid, outcome, tried)`` (``init_choice.choose`` with the
-#: command's options bound, the mesh continued as ``--extend`` says).
+#: Makes a net on a mesh: ``(mesh) -> (grid, outcome, tried, narrowed)`` (``init_choice.choose``
+#: or the search with the command's options bound, the mesh continued as ``--extend`` says;
+#: ``narrowed()``: the net within the largest strip width, ``(grid, outcome, tried)``, or None).
 NetMaker = Callable[[ReferenceMesh], tuple]
 
 
@@ -99,11 +103,25 @@ def _patch_net(patch: Patch, path: Path, make: NetMaker, whole: ReferenceMesh) -
     obj = write_mesh_obj(path, V, F)
     mesh = ReferenceMesh(V, F, Path(path), hashlib.sha256(obj).hexdigest())
     try:
-        grid, outcome, tried = make(mesh)
+        grid, outcome, tried, later = make(mesh)
     except DgpcError as err:
         raise DgpcError(f"patch {path.name}: {err.reason}", source=whole.path) from None
     return PatchNet(patch, mesh, obj, grid.net, outcome, tried,
-                    width_ratio(grid.net.f, mesh), grid.label)
+                    width_ratio(grid.net.f, mesh), grid.label, later)
+
+
+def narrowed(p: PatchNet) -> PatchNet:
+    """The patch net ``p`` made within the largest strip width (the patches are decided by the
+    nets as first made: a finer net's widths vary more along its strips at the fans)."""
+    if p.narrowed is None:
+        return p
+    try:
+        grid, outcome, tried = p.narrowed()
+    except DgpcError as err:
+        raise DgpcError(f"patch {p.mesh.path.name}: {err.reason}", source=p.mesh.path) from None
+    return dataclasses.replace(p, net=grid.net, outcome=outcome, tried=tried,
+                               width=width_ratio(grid.net.f, p.mesh), label=grid.label,
+                               narrowed=None)
 
 
 def _cut_record(cut: dict) -> dict:
@@ -175,7 +193,7 @@ def _renamed(p: PatchNet, path: Path) -> PatchNet:
         return p
     obj = write_mesh_obj(path, p.mesh.vertices, p.mesh.faces)
     mesh = ReferenceMesh(p.mesh.vertices, p.mesh.faces, path, hashlib.sha256(obj).hexdigest())
-    return PatchNet(p.patch, mesh, obj, p.net, p.outcome, p.tried, p.width, p.label)
+    return dataclasses.replace(p, mesh=mesh, obj=obj)
 
 
 def _auto(whole: Patch, ratio: float, coverage: float, path, make: NetMaker,

@@ -12,7 +12,9 @@ It searches three things the user did not give:
   its diagonal) in turn, up to the largest continuation that does not fold, until one covers
   :data:`EXTEND_ENOUGH` or more overhang covers no more;
 * the size, unless ``--cols`` or ``--edge-length`` is given: the best net so far made again
-  with each of :data:`SIZES` columns.
+  with each of :data:`SIZES` columns, and, where a largest strip width is set
+  (``stages.init_width``), the best net made again with as many more columns as bring its
+  widest strip within it.
 
 Candidates are ranked after a quick fit: the :data:`FINALISTS` best of each round (by the
 coverage of the net as traced) get :data:`QUICK_FIT_ITERATIONS` iterations of ``optimize
@@ -22,7 +24,9 @@ clad), whether the fitted net folds (``metrics.degenerate``), and how much its s
 width along themselves over the reference (``metrics.width_ratio``). The choice: of the nets
 that do not fold, those within :data:`COVERAGE_SLACK` of the best coverage; of those the one
 whose widths vary least, within :data:`WIDTH_SLACK`; ties go to the earlier candidate (an
-old default, less overhang, fewer columns). Every candidate tried is recorded with its figures.
+old default, less overhang, fewer columns). With a largest strip width and the columns
+``init``'s to choose, the nets within it are ranked first (any net there is). Every candidate
+tried is recorded with its figures.
 """
 
 from __future__ import annotations
@@ -51,6 +55,7 @@ from dgpc_cli.stages.init_choice import (
     option,
 )
 from dgpc_cli.stages.init_mesh import DEFAULT_COLS, MeshGrid, MeshTracing
+from dgpc_cli.stages.init_width import widen, widest_on, width_record
 from dgpc_cli.stages.modes import SOFT, mode_weights
 from dgpc_cli.stages.optimize import boundary_vertices, optimize_net
 from dgpc_cli.stages.polish import polish_weights
@@ -108,7 +113,9 @@ class Trial:
 
 @dataclass
 class SearchResult:
-    """The chosen net, its outcome and overhang, every trial, and the search's record."""
+    """The chosen net, its outcome and overhang, every trial, the search's record and the
+    record of its largest strip width (``stages.init_width.width_record``, None without a
+    limit); ``narrowed``."""
 
     grid: MeshGrid
     outcome: Outcome
@@ -117,6 +124,10 @@ class SearchResult:
     why: str
     trials: list[Trial] = field(default_factory=list)
     record: dict = field(default_factory=dict)
+    width: dict | None = None
+    #: With ``defer_width``: the result within the largest strip width (the search goes on,
+    #: its progress to the callback given), None when there is nothing to do.
+    narrowed: Callable[..., SearchResult] | None = None
 
 
 def _on_reference(f: np.ndarray, reference: ReferenceSurface, tolerance: float) -> np.ndarray:
@@ -158,25 +169,37 @@ def _cover(t: Trial) -> float:
     return t.quick["coverage"] if t.scored else (t.outcome.coverage if t.outcome else -1.0)
 
 
-def _rank(trials: list[Trial]) -> tuple[Trial, str]:
-    """The trial chosen (see the module) and why, in a few words."""
+def _fits(t: Trial, limit: float | None) -> bool:
+    """Whether the trial's widest strip is within ``limit`` (None: no limit)."""
+    w = t.record.get("widest")
+    return limit is None or w is None or w <= limit * (1 + 1e-9)
+
+
+def _rank(trials: list[Trial], limit: float | None = None) -> tuple[Trial, str]:
+    """The trial chosen (see the module) and why, in a few words; ``limit``: the largest
+    strip width, the nets within it ranked first."""
     if len(trials) == 1:
         return trials[0], "is the one the options name"
     scored = [t for t in trials if t.scored]
     if not scored:
         sound = [t for t in trials if t.outcome is not None]
+        sound = [t for t in sound if _fits(t, limit)] or sound
         best = max(t.outcome.coverage for t in sound)
         chosen = next(t for t in sound if t.outcome.coverage >= best - COVERAGE_SLACK)
         return chosen, "covers most as traced"
     unfolded = [t for t in scored if not t.quick["folded"]]
     folded = len(scored) - len(unfolded)
     pool = unfolded or scored
+    fitting = [t for t in pool if _fits(t, limit)]
+    narrow = (f"; {len(pool) - len(fitting)} with strips wider than {limit:.3g} left out"
+              if fitting and len(fitting) < len(pool) else "")
+    pool = fitting or pool
     best = max(t.quick["coverage"] for t in pool)
     close = [t for t in pool if t.quick["coverage"] >= best - COVERAGE_SLACK]
     least = min(t.quick.get("width_ratio", math.inf) for t in close)
     chosen = next(t for t in close
                   if t.quick.get("width_ratio", math.inf) <= least * (1 + WIDTH_SLACK))
-    note = f"; {folded} folded in the quick fit" if folded and unfolded else ""
+    note = (f"; {folded} folded in the quick fit" if folded and unfolded else "") + narrow
     if len(close) == 1:
         rest = sorted((t for t in pool if t is not chosen), key=_cover, reverse=True)
         runner = (f", next {rest[0].describe()} {100 * _cover(rest[0]):.1f} %" if rest else "")
@@ -190,18 +213,28 @@ def search(mesh: ReferenceMesh, *, base: str | None = None, direction=None,
            angle: float | None = None, rows: int | None = None, cols: int | None = None,
            spacing: float | None = None, extend: float | None = None,
            surroundings: ReferenceMesh | None = None,
-           progress: Callable[[str], None] | None = None) -> SearchResult:
+           progress: Callable[[str], None] | None = None,
+           strip_width: float | None = None, strip_width_given: bool = False,
+           widen_cols: bool | None = None, defer_width: bool = False) -> SearchResult:
     """The net ``init --method geodesic`` writes for ``mesh`` (see the module); ``extend``
     None: searched, else that overhang (``--extend``). ``surroundings``: the whole mesh
     ``mesh`` is a patch of, which an overhang runs onto
-    (:func:`~dgpc_cli.geodesics.extension.surrounded`) instead of the patch's continuation."""
+    (:func:`~dgpc_cli.geodesics.extension.surrounded`) instead of the patch's continuation.
+    ``strip_width``: the largest strip width (model unit; None: none), ``strip_width_given``
+    whether the user gave it; ``widen_cols``: whether the columns are ``init``'s to choose
+    (default: neither ``cols`` nor ``spacing`` given), starting from ``cols``;
+    ``defer_width``: the net too wide is made again only when the caller asks for it
+    (``SearchResult.narrowed``: ``init`` first decides on patches by the net as chosen)."""
     say = progress or (lambda text: None)
     given_extend = extend is not None
+    if widen_cols is None:
+        widen_cols = cols is None and spacing is None
     size = {"rows": rows, "cols": cols, "spacing": spacing}
     e0 = float(extend) if given_extend else 0.0
     diagonal = mesh.bbox_diagonal
     trials: list[Trial] = []
     reference = ReferenceSurface(mesh.vertices, mesh.faces)
+    tolerance = default_tolerance(mesh.vertices)
     domains: dict[float, tuple[ReferenceMesh, MeshTracing, ReferenceSurface]] = {}
 
     def domain_of(e: float) -> ReferenceMesh:
@@ -241,6 +274,8 @@ def search(mesh: ReferenceMesh, *, base: str | None = None, direction=None,
                                                relocate=surroundings is not None and e > 0)
             record.update(cand.record())
             record.update({"extend": e, "cols": sz["cols"]})
+            if strip_width is not None and outcome is not None:
+                record.update(widest_on(outcome.grid.net.f, reference, tolerance) or {})
             t = Trial(cand, e, sz["cols"], record, outcome)
             out.append(t)
         trials.extend(out)
@@ -294,15 +329,65 @@ def search(mesh: ReferenceMesh, *, base: str | None = None, direction=None,
         for n in sizes:
             sz = {**size, "cols": n}
             finalize(run([best.cand], best.extend, domain_of(best.extend), sz), count=1)
-    chosen, why = _rank(trials)
-    record = {"quick_fit_iterations": QUICK_FIT_ITERATIONS, "extends": tried_extends,
-              "fold_limit": fold_limit, "sizes": [DEFAULT_COLS if cols is None else cols,
-                                                  *sizes] if spacing is None else [],
-              "candidates": len(trials),
-              "quick_fits": sum(t.quick is not None for t in trials),
-              "options": _options(chosen), "why": why}
-    return SearchResult(chosen.outcome.grid, chosen.outcome, chosen.extend, chosen, why,
-                        trials, record)
+
+    def result(narrow: bool) -> SearchResult:
+        """The search's result; ``narrow``: the largest strip width kept (the net made again
+        with more columns where it is too wide), else only measured."""
+        steps = []
+        if strip_width is not None:
+            steps = (_widened(trials, run, finalize, domain_of, size, strip_width,
+                              widen_cols and narrow))
+        chosen, why = _rank(trials, strip_width if widen_cols and narrow else None)
+        width = (width_record(strip_width, strip_width_given, widen_cols, steps,
+                              _width_step(chosen, spacing)) if strip_width is not None
+                 else None)
+        record = {"quick_fit_iterations": QUICK_FIT_ITERATIONS, "extends": tried_extends,
+                  "fold_limit": fold_limit, "sizes": [DEFAULT_COLS if cols is None else cols,
+                                                      *sizes] if spacing is None else [],
+                  "candidates": len(trials),
+                  "quick_fits": sum(t.quick is not None for t in trials),
+                  "options": _options(chosen), "why": why}
+        later = _later if not narrow else None
+        return SearchResult(chosen.outcome.grid, chosen.outcome, chosen.extend, chosen, why,
+                            trials, record, width, later)
+
+    def _later(progress_later: Callable[[str], None] | None = None) -> SearchResult:
+        nonlocal say
+        say = progress_later or say
+        return result(True)
+
+    return result(not defer_width or strip_width is None or not widen_cols)
+
+
+def _cols_of(t: Trial, spacing: float | None = None) -> int | None:
+    """The columns a trial was asked for (a degenerate net may be cut to fewer); None for
+    ``--edge-length``."""
+    return t.cols if t.cols is not None else (DEFAULT_COLS if spacing is None else None)
+
+
+def _width_step(t: Trial, spacing: float | None = None) -> dict:
+    return {"candidate": t.describe(), "cols": _cols_of(t, spacing),
+            "shape": list(t.outcome.grid.net.shape) if t.outcome else None,
+            "widest": t.record.get("widest"), "strip": t.record.get("strip")}
+
+
+def _widened(trials, run, finalize, domain_of, size, limit, widen_cols) -> list[dict]:
+    """The steps of the largest strip width (``stages.init_width.widen``): the best trial
+    (ranked without the limit) and, when ``widen_cols``, the same candidate made again with
+    more columns while its widest strip exceeds ``limit``, each with its quick fit."""
+    best, _ = _rank(trials)
+    if not widen_cols:
+        return [_width_step(best, size["spacing"])]
+
+    def make(n: int) -> Trial | None:
+        [t] = run([best.cand], best.extend, domain_of(best.extend), {**size, "cols": n})
+        if t.outcome is None:
+            return None
+        finalize([t], count=1)
+        return t
+
+    steps = widen(best, make, lambda t: t.record.get("widest"), _cols_of, limit)
+    return [_width_step(t) for t in steps]
 
 
 def _options(t: Trial) -> str:

@@ -15,6 +15,7 @@ from shapely.ops import unary_union
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.strips import strip_id
+from dgpc_cli.strips.crossing import folded_inside
 from dgpc_cli.strips.cut_edges import template_cut_edges
 from dgpc_cli.strips.develop import develop_strip
 from dgpc_cli.strips.pinch import PINCH, row_widths, unpinched, widest_section
@@ -458,3 +459,22 @@ def trim_records(strips: list[PlanarStrip], reference) -> tuple[list[dict], list
     log.info("trim: %d parts kept, %d dropped", sum(len(r["parts"]) for r in records),
              sum(len(r["dropped"]) for r in records))
     return records, notes
+
+
+def crossed_strips(strips: list[PlanarStrip], records: list[dict], f) -> list[str]:
+    """The ids of the strips whose rulings cross (``rulings_ordered`` false), cut from the net
+    ``f (m, n, 3)`` (the strips' unit); of trimmed strips (``records[i]["trim"]``) only those
+    with a fold inside a part kept: one beyond the outline is cut away with it."""
+    f = np.asarray(f, float)
+    out = []
+    for strip, record in zip(strips, records, strict=True):
+        if strip.rulings_ordered:
+            continue
+        trim = record.get("trim")
+        if trim is not None and not folded_inside(
+                strip.A, strip.B, f[:, strip.v], f[:, strip.v + 1],
+                [p["outline"] for p in trim["parts"]]):
+            log.info("%s: its rulings cross only beyond the outline, cut away", strip.id)
+            continue
+        out.append(strip.id)
+    return out

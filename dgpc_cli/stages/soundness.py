@@ -7,6 +7,7 @@ import numpy as np
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.metrics.degenerate import GPC_LIMIT, degeneracies
+from dgpc_cli.strips.crossing import folded_inside
 
 
 def require_sound_net(f: np.ndarray, source, *, gpc: bool = True) -> None:
@@ -21,12 +22,16 @@ def require_sound_net(f: np.ndarray, source, *, gpc: bool = True) -> None:
                         "re-make it first", source=source)
 
 
-def require_sound_strips(geometry, ids: list[str], source, spans: list | None = None) -> None:
+def require_sound_strips(geometry, ids: list[str], source, spans: list | None = None,
+                         parts: list | None = None) -> None:
     """DgpcError naming ``source`` and the first degenerate strip when a planar-quad strip
     ``(A, B)`` of ``geometry`` has a collapsed edge or a folded quad (the strip as an m × 2
     net; its rows are named). ``spans[i]``, when given and not None, lists the row ranges
     ``(r0, r1)`` of strip i that are cut (its parts trimmed to the reference's outline): a
-    degenerate quad outside them (in the overhang, trimmed away) does not count."""
+    degenerate quad outside them (in the overhang, trimmed away) does not count; ``parts[i]``,
+    when given and not None, the outlines of those parts in the strip's ``(t, s)``: a fold
+    (crossing rulings, no collapsed edge) counts only where it lies inside one of them
+    (``strips.crossing``), as ``planarize-strips`` reports it."""
     for i, ((A, B), strip) in enumerate(zip(geometry, ids, strict=True)):
         found = degeneracies(np.stack([A, B], axis=1), gpc_limit=None)
         span = None if spans is None else spans[i]
@@ -35,6 +40,9 @@ def require_sound_strips(geometry, ids: list[str], source, spans: list | None = 
             for r0, r1 in span:
                 cut[r0:r1] = True
             found = found if found.bad_quads[cut].any() else None
+        if found and parts is not None and parts[i] is not None and not len(found.short_u) \
+                and not len(found.short_v) and not folded_inside(A, B, None, None, parts[i]):
+            found = None
         if found:
             what = ("is folded: its developed outline crosses itself (planarize-strips "
                     "reports crossing rulings in status.rulings_cross)" if len(found.flipped)
