@@ -25,6 +25,7 @@ from dgpc_cli.stages.planarize import (
     crossed_strips,
     parse_strip_range,
     planarize_strips,
+    refine_rows,
     strips_metrics,
     template_qualifies,
     template_strips,
@@ -79,12 +80,17 @@ def _outline(net, json_path):
               show_default=True,
               help="Template fit: largest angle in degrees between neighbouring rulings (score "
                    "lines); a larger angle lets the strips follow the net more closely.")
+@click.option("--refine", type=click.IntRange(min=1), default=1, show_default=True,
+              help="Rulings per net row: K − 1 more between every two rows, their ends on a "
+                   "cubic through the net's geodesics (arc length); the strips follow the net "
+                   "between its rows and their seams meet closer. The parts' rows in unfold "
+                   "stay the net's (refined row t is net row t / K).")
 @output_opt
 @force_opt
 @format_opt
 @click.pass_context
 def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, seam_weight,
-                         ruling_fairness, max_ruling_turn, output, force, fmt):
+                         ruling_fairness, max_ruling_turn, refine, output, force, fmt):
     """Turn the geodesic strips of the net STEM into discrete developable strips (paper §6.2.4).
 
     Rulings follow the cross products N × N1 of neighbouring normals (averaged across flat
@@ -111,13 +117,14 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
     columns = parse_strip_range(strip_range, n)
     outline = _outline(net, json_path) if trim else None
     reason = "--per-strip" if per_strip else template_qualifies(net.f_mm, columns)
+    f_mm = refine_rows(net.f_mm, refine)
     with progressbar(ctx, len(columns), "planarize strips") as bar:
-        strips = planarize_strips(net.f_mm, columns, flat_angle=flat_angle, progress=bar.update)
+        strips = planarize_strips(f_mm, columns, flat_angle=flat_angle, progress=bar.update)
     template = fallback = None
     if reason is None:
         log.info("planarize-strips: one template for all strips (the net is isometric to a "
                  "surface of revolution with equal strip widths)")
-        fitted, record = template_strips(net.f_mm, strips, net.units,
+        fitted, record = template_strips(f_mm, strips, net.units,
                                          seam_weight=seam_weight,
                                          ruling_fairness=ruling_fairness,
                                          max_ruling_turn=max_ruling_turn)
@@ -151,12 +158,14 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
                     "method": "per-strip" if template is None else "template",
                     "seam_weight": seam_weight, "ruling_fairness": ruling_fairness,
                     "max_ruling_turn": max_ruling_turn,
+                    **({"refine": refine} if refine > 1 else {}),
                     **({"template_rejected": fallback} if fallback else {})},
         template=template,
         inputs={"net": file_input(json_path, out_json.resolve().parent)},
         metrics={**strips_metrics(records, net.units),
                  "fabrication": fabrication_metrics(net.f, net.units, records,
-                                                    [(s.A, s.B) for s in strips], outline)},
+                                                    [(s.A, s.B) for s in strips], outline,
+                                                    refine=refine)},
         status={"polished": len(polished), "polish_not_converged": failed,
                 "rulings_cross": crossed})
     write_files(with_3dm(strips_files(output, art), output, fmt), force=force)

@@ -113,7 +113,8 @@ def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_st
         source=json_path,
         trims=[r.get("trim") for r in strips.records],
         cut_edges=[r.get("cut_edges") for r in strips.records],
-        template=strips.template is not None and "rejected" not in strips.template)
+        template=strips.template is not None and "rejected" not in strips.template,
+        refine=strips.parameters.get("refine", 1))
     for line in scale_warnings(parts, geometry, units, stock_length) + narrow_warnings(parts,
                                                                                       units):
         log.warning("%s: %s", json_path, line)

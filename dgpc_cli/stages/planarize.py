@@ -21,6 +21,7 @@ from dgpc_cli.strips.develop import develop_strip
 from dgpc_cli.strips.pinch import PINCH, row_widths, unpinched, widest_section
 from dgpc_cli.strips.polish import polish_strip
 from dgpc_cli.strips.quality import deviation, planarity_defect, strip_width
+from dgpc_cli.strips.refine import refine_rows as refine_rows  # the CLI's --refine
 from dgpc_cli.strips.rulings import (
     cut_rulings,
     cut_tangents,

@@ -56,15 +56,24 @@ def fabrication_warnings(fab: dict) -> list[str]:
 
 
 def fabrication_metrics(f: np.ndarray, units: str, records: list[dict], geometry: list,
-                        reference=None) -> dict:
+                        reference=None, *, refine: int = 1) -> dict:
     """``metrics.fabrication`` of the strips ``geometry[i] = (A, B)`` with the JSON
     ``records[i]`` (``id``, ``v``, and ``trim`` for a trimmed strip) on the net ``f (m, n, 3)``,
     all in ``units``; ``reference`` (a ``core.reference.ReferenceSurface`` in ``units``) the
     outline the trimmed strips were clipped to (their end gaps are measured to it, their
-    areas against its area)."""
+    areas against its area). Strips of ``refine`` rulings per net row (``planarize-strips
+    --refine``) are measured against the net refined as they were fitted
+    (:func:`~dgpc_cli.strips.refine.refine_rows`: its geodesics cubic between the net's
+    vertices); ``net_quads_max_deviation_mm`` and ``_relative`` then give their deviation from
+    the net's own (bilinear) quads too, which cut under the curved geodesics by their sag."""
     from dgpc_cli.strips.cut_edges import edges_between
     from dgpc_cli.strips.develop import develop_strip, signed_area
+    from dgpc_cli.strips.fabrication import net_quads_deviation
+    from dgpc_cli.strips.refine import refine_rows
     from dgpc_cli.strips.trim import part_area
+
+    coarse = np.asarray(f, float)
+    f = refine_rows(coarse, refine)           # what strips of ``refine`` rows were fitted to
 
     ids = [r["id"] for r in records]
     measures = measure_strips(f, [(r["v"], A, B) for r, (A, B) in
@@ -86,8 +95,16 @@ def fabrication_metrics(f: np.ndarray, units: str, records: list[dict], geometry
         tri = reference.vertices[reference.faces]
         outline_area = float(0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0],
                                                            tri[:, 2] - tri[:, 0]), axis=-1).sum())
-    return summary(ids, measures, mm_per_unit=mm_per_unit(units), part_gaps=part_gaps,
-                   part_areas=part_areas, outline_area=outline_area)
+    out = summary(ids, measures, mm_per_unit=mm_per_unit(units), part_gaps=part_gaps,
+                  part_areas=part_areas, outline_area=outline_area)
+    if refine > 1:
+        worst = net_quads_deviation(coarse, [(r["v"], A, B) for r, (A, B) in
+                                             zip(records, geometry, strict=True)])
+        out["net_quads_max_deviation_mm"] = worst * mm_per_unit(units)
+        out["net_quads_max_deviation_relative"] = (out["net_quads_max_deviation_mm"]
+                                                   / out["mean_width_mm"])
+        out["refine"] = refine
+    return out
 
 
 def recorded_net(art, json_path: Path):
@@ -132,7 +149,8 @@ def inspect_strips(json_path: Path) -> dict:
         mesh = recorded_reference(net, net_path)
         reference = ReferenceSurface.from_mesh(mesh) if mesh is not None else None
     metrics["fabrication"] = fabrication_metrics(net.f, art.units, art.records, art.geometry,
-                                                 reference)
+                                                 reference,
+                                                 refine=art.parameters.get("refine", 1))
     return metrics
 
 
@@ -162,8 +180,10 @@ def figure_data(art, f: np.ndarray) -> FigureData:
     from dgpc_cli.strips.congruence import align
     from dgpc_cli.strips.cut_edges import edges_between
     from dgpc_cli.strips.develop import develop_strip
+    from dgpc_cli.strips.refine import refine_rows
 
     k = mm_per_unit(art.units)
+    f = refine_rows(f, art.parameters.get("refine", 1))       # what the strips were fitted to
     measures = measure_strips(f, [(r["v"], A, B) for r, (A, B) in
                                   zip(art.records, art.geometry, strict=True)])
     devs = [develop_strip(to_mm(A, art.units), to_mm(B, art.units)) for A, B in art.geometry]

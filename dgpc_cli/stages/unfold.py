@@ -34,6 +34,7 @@ from dgpc_cli.strips.congruence import Alignment, congruence_classes, kabsch, ou
 from dgpc_cli.strips.cut_edges import edges_between
 from dgpc_cli.strips.develop import Development, develop_strip, signed_area
 from dgpc_cli.strips.pinch import PINCH
+from dgpc_cli.strips.refine import net_rows
 from dgpc_cli.strips.score_lines import aligned, score_distance
 from dgpc_cli.strips.template_boards import board_geometry, cut_params, cut_path, template_patterns
 from dgpc_cli.strips.trim import developed_part, strip_points
@@ -84,6 +85,30 @@ def row_span(a: float, b: float) -> dict:
     return out
 
 
+def in_net_rows(parts: list[dict], joints: list[dict], refine: int) -> None:
+    """The parts' ``rows``, ``row_span`` and the joints' ``row`` of strips of ``refine``
+    rulings per net row (``planarize-strips --refine``), counted in the strips' own rows,
+    turned into the net's rows in place: strip row ``t`` is net row ``t / refine``
+    (:func:`~dgpc_cli.strips.refine.net_rows`), so an end on a ruling between two net rows is
+    a fractional net row (``row_span``) and the end marks (``R<row>``), cut lists and
+    assembly name net rows whatever the refinement. A part whose ``rows`` are those it
+    reaches into (trimmed, or a template board cut off the rulings: ``cuts`` without
+    ``row_span``) keeps whole rows, the net rows it reaches into. The ``(t, s)`` of outlines
+    and cuts stay in the strip's own rows (they locate points on its geometry)."""
+    if refine == 1:
+        return
+    for p in parts:
+        if (p.get("trimmed") or "cuts" in p) and "row_span" not in p:
+            a, b = net_rows(p["rows"], refine)
+            p["rows"] = [int(np.floor(snapped(a))), int(np.ceil(snapped(b)))]
+            continue
+        a, b = net_rows(p.get("row_span", p["rows"]), refine)
+        p.pop("row_span", None)
+        p.update(row_span(a, b))
+    for j in joints:
+        j["row"] = joint_row(snapped(float(net_rows(j["row"], refine))))
+
+
 def with_cut_edges(d: Development, cut: dict | None, r0: float, r1: float,
                    m: int | None = None) -> Development:
     """The development ``d`` of the rows ``r0..r1`` of a strip of ``m`` rows (fractional at a
@@ -131,7 +156,7 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
                   congruence_tol: float = CONGRUENCE_TOL_MM, mirror_ok: bool = False,
                   stock_length: float | None = None, stagger: float | None = None,
                   source: str | None = None, trims: list | None = None,
-                  cut_edges: list | None = None, template: bool = False
+                  cut_edges: list | None = None, template: bool = False, refine: int = 1
                   ) -> tuple[list[dict], list[dict], list[dict]]:
     """Develop every strip ``(A, B)`` of ``geometry`` (mm), cut it into boards no longer than
     ``stock_length`` (mm; None: whole strips) at rulings, or straight across a planar quad where
@@ -151,12 +176,15 @@ def unfold_strips(geometry: list, ids: list[str], columns: list[int], *,
     (:func:`with_cut_edges`): its outline, widths and congruence follow them. ``template``:
     the strips are bendings of one template (``planarize-strips``' ``template`` record); with a
     stock length every strip is then cut at the same lines of the template, in two alternating
-    joint patterns (:func:`template_boards`).
+    joint patterns (:func:`template_boards`). ``refine``: the strips have that many rulings per
+    net row (``planarize-strips --refine``); the records' rows are the net's
+    (:func:`in_net_rows`).
     """
     check_stock(geometry, stock_length)
     parts, classes, joints = _unfold_parts(geometry, ids, columns, congruence_tol, mirror_ok,
                                            stock_length, stagger, source, trims, cut_edges,
                                            template)
+    in_net_rows(parts, joints, refine)
     return parts, with_score_lines(parts, classes, congruence_tol), joints
 
 

@@ -33,9 +33,9 @@ from dgpc_cli.metrics.frames import tangent_frames, unit
 from dgpc_cli.strips.quality import diagonal_gap, patch_mesh, quad_deviation, strip_width
 from dgpc_cli.strips.trim import signed_outline_distance, strip_points
 
-__all__ = ["StripMeasures", "end_gaps", "measure_strips", "net_strip_area", "part_end_gaps",
-           "polyline_foot", "ruling_angles", "seam_offsets", "side_ratios", "strip_area",
-           "summary"]
+__all__ = ["StripMeasures", "end_gaps", "measure_strips", "net_quads_deviation", "net_strip_area",
+           "part_end_gaps", "polyline_foot", "ruling_angles", "seam_offsets", "side_ratios",
+           "strip_area", "summary"]
 
 
 def polyline_foot(X: np.ndarray, points: np.ndarray, *, extend: bool = False):
@@ -230,6 +230,16 @@ def measure_strips(f: np.ndarray, strips: list[tuple[int, np.ndarray, np.ndarray
         s.seams[v + 1] = seam_offsets(B, A1, net_normals_on(f, v + 1, B))
         t.seams[v] = seam_offsets(A1, B, net_normals_on(f, v + 1, A1))
     return out
+
+
+def net_quads_deviation(f: np.ndarray, strips: list[tuple[int, np.ndarray, np.ndarray]]
+                        ) -> float:
+    """The largest deviation of the strips ``(v, A, B)`` from the net ``f (m, n, 3)``'s own
+    strips (its bilinear quads, :func:`~dgpc_cli.strips.quality.quad_deviation`), in f's
+    unit."""
+    f = np.asarray(f, float)
+    return max(float(np.max(quad_deviation(np.asarray(A, float), np.asarray(B, float),
+                                           f[:, v], f[:, v + 1]))) for v, A, B in strips)
 
 
 def _max(x) -> float:
