@@ -9,7 +9,8 @@ Runs, in one process tree and one run (so the noisy machine cancels out of the r
   samples handles), the felt's developable fit (41×25), a 4,797-vertex (123×39) fit, the
   four Gehry facades' drags (21×13), the wall's drag at 41×41 (the same handle pattern) and a
   161×81 fit;
-* ``planarize-strips`` on the wall's drag (21×13): one template, and ``--per-strip`` (ratio);
+* ``planarize-strips`` on the wall's drag (21×13): one template, ``--per-strip`` and
+  ``--refine 2`` (their time ratios);
 * for each optimize, the share of its time spent in the solver loop (``guided_projection``,
   from a profile of the command; the rest is reading, the reference, metrics, writing).
 """
@@ -145,14 +146,18 @@ def main() -> int:
                   f"{R:9.1e} {100 * share:10.0f} %")
         # planarize-strips on the drag's wall (21×13): one template, and strip by strip
         times = {}
-        for label, extra in (("one template", []), ("--per-strip", ["--per-strip"])):
+        runs = (("one template", []), ("--per-strip", ["--per-strip"]),
+                ("--refine 2", ["--refine", "2"]))
+        for k, (label, extra) in enumerate(runs):
             t0 = time.perf_counter()
             subprocess.run([DGPC, "-q", "planarize-strips", str(d / "wall"), *extra, "-o",
-                            str(d / f"strips-{len(extra)}")], check=True, capture_output=True)
+                            str(d / f"strips-{k}")], check=True, capture_output=True)
             times[label] = time.perf_counter() - t0
         print(f"planarize-strips (wall 21×13): one template {times['one template']:.1f} s, "
               f"--per-strip {times['--per-strip']:.1f} s, ratio "
-              f"{times['one template'] / times['--per-strip']:.2f}")
+              f"{times['one template'] / times['--per-strip']:.2f}; --refine 2 "
+              f"{times['--refine 2']:.1f} s, ratio "
+              f"{times['--refine 2'] / times['one template']:.2f}")
     return 0
 
 
