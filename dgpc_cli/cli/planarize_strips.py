@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import logging
 from pathlib import Path
 
 import click
@@ -10,43 +9,13 @@ import click
 from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt, progressbar
 from dgpc_cli.cli.patch_set_members import on_members
-from dgpc_cli.errors import DgpcError, NotConverged
-from dgpc_cli.io.artifact import artifact_paths, file_input
-from dgpc_cli.io.atomic import write_files
-from dgpc_cli.io.net import read_net
-from dgpc_cli.io.rhino import with_3dm
-from dgpc_cli.io.strips import StripsArtifact, strips_files
 from dgpc_cli.stages.planarize import (
     FLAT_ANGLE,
     MAX_RULING_TURN,
-    POLISH_ABOVE,
     RULING_FAIRNESS,
     SEAM_WEIGHT,
-    crossed_strips,
-    parse_strip_range,
-    planarize_strips,
-    refine_rows,
-    strips_metrics,
-    template_qualifies,
-    template_strips,
-    trim_records,
 )
-from dgpc_cli.stages.soundness import require_sound_net
-from dgpc_cli.stages.strip_fabrication import fabrication_metrics, fabrication_warnings
-
-log = logging.getLogger(__name__)
-
-
-def _outline(net, json_path):
-    """The reference the net records, for --trim; DgpcError naming --trim without one."""
-    from dgpc_cli.core.reference import ReferenceSurface
-    from dgpc_cli.stages.inspect import recorded_reference
-
-    mesh = recorded_reference(net, json_path)
-    if mesh is None:
-        raise DgpcError(f"--trim clips to the reference the net records, and {json_path} "
-                        "records none that is there", source="--trim")
-    return ReferenceSurface.from_mesh(mesh)
+from dgpc_cli.stages.planarize_run import PlanarizeOptions, run_planarize_strips
 
 
 @click.command("planarize-strips", short_help="Make every geodesic strip a strip of planar quads.")
@@ -109,77 +78,11 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
     """
     if on_members(ctx, stem, output, force, "planarize-strips"):
         return
-    json_path, _ = artifact_paths(stem)
     check_writable(output, force)
-    net = read_net(stem)
-    require_sound_net(net.f, json_path, gpc=False)
-    m, n = net.shape
-    columns = parse_strip_range(strip_range, n)
-    outline = _outline(net, json_path) if trim else None
-    reason = "--per-strip" if per_strip else template_qualifies(net.f_mm, columns)
-    f_mm = refine_rows(net.f_mm, refine)
-    with progressbar(ctx, len(columns), "planarize strips") as bar:
-        strips = planarize_strips(f_mm, columns, flat_angle=flat_angle, progress=bar.update)
-    template = fallback = None
-    if reason is None:
-        log.info("planarize-strips: one template for all strips (the net is isometric to a "
-                 "surface of revolution with equal strip widths)")
-        fitted, record = template_strips(f_mm, strips, net.units,
-                                         seam_weight=seam_weight,
-                                         ruling_fairness=ruling_fairness,
-                                         max_ruling_turn=max_ruling_turn)
-        if fitted is None:
-            log.warning("planarize-strips: every strip on its own, no shared template: %s",
-                        record["rejected"])
-            fallback = record
-        else:
-            template = record
-        strips = fitted or strips
-    elif not per_strip:
-        log.warning("planarize-strips: every strip on its own, no shared template: the net %s",
-                    reason)
-    strips = [s.in_units(net.units) for s in strips]
-    records = [s.record() for s in strips]
-    if outline is not None:
-        trims, notes = trim_records(strips, outline)
-        for record, cut in zip(records, trims, strict=True):
-            record["trim"] = cut
-        for note in notes:
-            log.warning("%s", note)
-    out_json, _ = artifact_paths(output)
-    polished = [s for s in strips if s.polish.get("applied")]
-    failed = [s.id for s in polished if s.polish.get("status") != "converged"]
-    crossed = crossed_strips(strips, records, net.f)
-    art = StripsArtifact(
-        geometry=[(s.A, s.B) for s in strips], records=records,
-        source_shape=(m, n), units=net.units,
-        parameters={"strips": [columns[0], columns[-1]], "flat_angle": flat_angle,
-                    "polish_above": POLISH_ABOVE, "trim": trim,
-                    "method": "per-strip" if template is None else "template",
-                    "seam_weight": seam_weight, "ruling_fairness": ruling_fairness,
-                    "max_ruling_turn": max_ruling_turn,
-                    **({"refine": refine} if refine > 1 else {}),
-                    **({"template_rejected": fallback} if fallback else {})},
-        template=template,
-        inputs={"net": file_input(json_path, out_json.resolve().parent)},
-        metrics={**strips_metrics(records, net.units),
-                 "fabrication": fabrication_metrics(net.f, net.units, records,
-                                                    [(s.A, s.B) for s in strips], outline,
-                                                    refine=refine)},
-        status={"polished": len(polished), "polish_not_converged": failed,
-                "rulings_cross": crossed})
-    write_files(with_3dm(strips_files(output, art), output, fmt), force=force)
-    click.echo(str(out_json))
-    for note in fabrication_warnings(art.metrics["fabrication"]):
-        log.warning("%s: %s", out_json, note)
-    log.info("%s: %d strips, max planarity %.3g of the diagonal, max deviation %.3g of the "
-             "width", out_json, len(strips), art.metrics["max_planarity_diagonal_relative"],
-             art.metrics["max_deviation_relative"])
-    if failed:
-        raise NotConverged(f"the polish of {', '.join(failed)} did not reach its tolerance "
-                           f"(max planarity {art.metrics['max_planarity_diagonal_relative']:.3g}"
-                           " of the diagonal); written anyway",
-                           source=out_json)
-    if crossed:
-        raise NotConverged(f"the rulings of {', '.join(crossed)} cross (folded quads, the "
-                           "strip cannot be unfolded); written anyway", source=out_json)
+    opts = PlanarizeOptions(strip_range=strip_range, flat_angle=flat_angle, trim=trim,
+                            per_strip=per_strip, seam_weight=seam_weight,
+                            ruling_fairness=ruling_fairness, max_ruling_turn=max_ruling_turn,
+                            refine=refine)
+    run_planarize_strips(stem, output, opts, force=force, fmt=fmt,
+                         progressbar=lambda length, label: progressbar(ctx, length, label),
+                         written=lambda out_json: click.echo(str(out_json)))
