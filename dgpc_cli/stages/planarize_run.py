@@ -30,7 +30,12 @@ from dgpc_cli.stages.planarize import (
     trim_records,
 )
 from dgpc_cli.stages.soundness import require_sound_net
-from dgpc_cli.stages.strip_fabrication import fabrication_metrics, fabrication_warnings
+from dgpc_cli.stages.strip_fabrication import (
+    DEVIATION_WARN,
+    SEAM_STEP_WARN,
+    fabrication_metrics,
+    fabrication_warnings,
+)
 
 log = logging.getLogger(__name__)
 
@@ -46,7 +51,7 @@ class PlanarizeOptions:
     seam_weight: float = SEAM_WEIGHT
     ruling_fairness: float = RULING_FAIRNESS
     max_ruling_turn: float = MAX_RULING_TURN
-    refine: int = 1
+    refine: int | None = None       # None: --refine auto
 
 
 def _outline(net, json_path):
@@ -61,21 +66,10 @@ def _outline(net, json_path):
     return ReferenceSurface.from_mesh(mesh)
 
 
-def run_planarize_strips(stem: Path, output: Path, opts: PlanarizeOptions, *, force: bool,
-                         fmt, progressbar: Callable, written: Callable[[Path], None]) -> None:
-    """Planarize the strips of the net ``stem`` into the strips artifact ``output``.
-
-    ``progressbar(length, label)`` is a context manager with ``update``; ``written(out_json)``
-    is called once the files are written, before the warnings. Raises NotConverged (after
-    writing) where a polish did not converge or rulings cross."""
-    json_path, _ = artifact_paths(stem)
-    net = read_net(stem)
-    require_sound_net(net.f, json_path, gpc=False)
-    m, n = net.shape
-    columns = parse_strip_range(opts.strip_range, n)
-    outline = _outline(net, json_path) if opts.trim else None
-    reason = "--per-strip" if opts.per_strip else template_qualifies(net.f_mm, columns)
-    refine = opts.refine
+def _fit(net, columns, opts: PlanarizeOptions, refine: int, reason, progressbar):
+    """The strips of ``refine`` rulings per net row, in the net's units: one template where
+    ``reason`` is None and the fit is accepted, else each strip on its own. Returns the
+    strips, the template record (None without one) and the rejected fit's record (or None)."""
     f_mm = refine_rows(net.f_mm, refine)
     with progressbar(len(columns), "planarize strips") as bar:
         strips = planarize_strips(f_mm, columns, flat_angle=opts.flat_angle,
@@ -98,15 +92,33 @@ def run_planarize_strips(stem: Path, output: Path, opts: PlanarizeOptions, *, fo
     elif not opts.per_strip:
         log.warning("planarize-strips: every strip on its own, no shared template: the net %s",
                     reason)
-    strips = [s.in_units(net.units) for s in strips]
+    return [s.in_units(net.units) for s in strips], template, fallback
+
+
+@dataclass
+class _Fitted:
+    """One fit made into the strips artifact, with what its run reports."""
+
+    art: StripsArtifact
+    strips: list
+    failed: list[str]
+    crossed: list[str]
+    notes: list[str]          # what the trim dropped
+
+
+def _artifact(net, json_path: Path, out_json: Path, columns, outline, opts: PlanarizeOptions,
+              refine: int, fit) -> _Fitted:
+    """The strips artifact of the fit ``(strips, template, fallback)`` (trimmed to
+    ``outline`` where given)."""
+    strips, template, fallback = fit
+    m, n = net.shape
     records = [s.record() for s in strips]
     if outline is not None:
         trims, notes = trim_records(strips, outline)
         for record, cut in zip(records, trims, strict=True):
             record["trim"] = cut
-        for note in notes:
-            log.warning("%s", note)
-    out_json, _ = artifact_paths(output)
+    else:
+        notes = []
     polished = [s for s in strips if s.polish.get("applied")]
     failed = [s.id for s in polished if s.polish.get("status") != "converged"]
     crossed = crossed_strips(strips, records, net.f)
@@ -128,12 +140,95 @@ def run_planarize_strips(stem: Path, output: Path, opts: PlanarizeOptions, *, fo
                                                     refine=refine)},
         status={"polished": len(polished), "polish_not_converged": failed,
                 "rulings_cross": crossed})
+    return _Fitted(art, strips, failed, crossed, notes)
+
+
+def _figures(art: StripsArtifact) -> dict:
+    """The largest deviation from the net and seam step, relative to the mean strip width."""
+    fab = art.metrics["fabrication"]
+    return {"deviation": fab.get("max_deviation_relative"),
+            "seam_step": fab.get("max_seam_step_relative")}
+
+
+def _misses(figures: dict) -> bool:
+    """Whether the figures miss the targets :data:`DEVIATION_WARN` or :data:`SEAM_STEP_WARN`
+    (a figure that cannot be measured, None or NaN, misses nothing)."""
+    return any(v is not None and v == v and v > limit
+               for v, limit in ((figures["deviation"], DEVIATION_WARN),
+                                (figures["seam_step"], SEAM_STEP_WARN)))
+
+
+def _better(fine: dict, coarse: dict) -> bool:
+    """Whether the refined strips' figures ``fine`` beat ``coarse``: a lower seam step and a
+    deviation no higher."""
+    if any(v is None or v != v for v in (*fine.values(), *coarse.values())):
+        return False
+    return fine["seam_step"] < coarse["seam_step"] and fine["deviation"] <= coarse["deviation"]
+
+
+def _percent(figures: dict) -> str:
+    def pct(v):
+        return "n/a" if v is None or v != v else f"{100 * v:.2f} %"
+    return f"deviation {pct(figures['deviation'])}, seam step {pct(figures['seam_step'])}"
+
+
+def _auto_refine(first: _Fitted, fit_again) -> _Fitted:
+    """``--refine auto``: the strips of one template ``first`` (K = 1) where they meet the
+    targets, else the strips of ``fit_again()`` (K = 2) where :func:`_better`; the choice is
+    recorded in the kept artifact's ``parameters.refine_auto`` and said in one stderr line."""
+    coarse = _figures(first.art)
+    if first.art.template is None or not _misses(coarse):
+        return first
+    second = fit_again()
+    fine = _figures(second.art)
+    keep = second if _better(fine, coarse) else first
+    k = 2 if keep is second else 1
+    keep.art.parameters["refine_auto"] = {
+        "tried": [1, 2], "kept": k,
+        "figures": {"1": coarse, "2": fine},
+        "against": {"1": "net", "2": "refined net"}}
+    log.warning("planarize-strips: --refine auto: K = 1 misses the targets (%s of the mean "
+                "strip width; targets %g %% and %g %%), K = 2 gives %s (against the refined "
+                "net): K = %d kept", _percent(coarse), 100 * DEVIATION_WARN,
+                100 * SEAM_STEP_WARN, _percent(fine), k)
+    return keep
+
+
+def run_planarize_strips(stem: Path, output: Path, opts: PlanarizeOptions, *, force: bool,
+                         fmt, progressbar: Callable, written: Callable[[Path], None]) -> None:
+    """Planarize the strips of the net ``stem`` into the strips artifact ``output``.
+
+    ``opts.refine`` None is ``--refine auto``: K = 1, and K = 2 where one template's K = 1
+    strips miss the deviation or seam-step target and K = 2 does better
+    (:func:`_auto_refine`). ``progressbar(length, label)`` is a context manager with
+    ``update``; ``written(out_json)`` is called once the files are written, before the
+    warnings. Raises NotConverged (after writing) where a polish did not converge or rulings
+    cross."""
+    json_path, _ = artifact_paths(stem)
+    net = read_net(stem)
+    require_sound_net(net.f, json_path, gpc=False)
+    columns = parse_strip_range(opts.strip_range, net.shape[1])
+    outline = _outline(net, json_path) if opts.trim else None
+    reason = "--per-strip" if opts.per_strip else template_qualifies(net.f_mm, columns)
+    out_json, _ = artifact_paths(output)
+
+    def run(refine: int) -> _Fitted:
+        return _artifact(net, json_path, out_json, columns, outline, opts, refine,
+                         _fit(net, columns, opts, refine, reason, progressbar))
+
+    if opts.refine is None:
+        done = _auto_refine(run(1), lambda: run(2))
+    else:
+        done = run(opts.refine)
+    art, failed, crossed = done.art, done.failed, done.crossed
+    for note in done.notes:
+        log.warning("%s", note)
     write_files(with_3dm(strips_files(output, art), output, fmt), force=force)
     written(out_json)
     for note in fabrication_warnings(art.metrics["fabrication"]):
         log.warning("%s: %s", out_json, note)
     log.info("%s: %d strips, max planarity %.3g of the diagonal, max deviation %.3g of the "
-             "width", out_json, len(strips), art.metrics["max_planarity_diagonal_relative"],
+             "width", out_json, len(done.strips), art.metrics["max_planarity_diagonal_relative"],
              art.metrics["max_deviation_relative"])
     if failed:
         raise NotConverged(f"the polish of {', '.join(failed)} did not reach its tolerance "
