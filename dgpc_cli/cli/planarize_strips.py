@@ -50,7 +50,7 @@ from dgpc_cli.stages.planarize_run import PlanarizeOptions, run_planarize_strips
               show_default=True,
               help="Template fit: largest angle in degrees between neighbouring rulings (score "
                    "lines); a larger angle lets the strips follow the net more closely.")
-@click.option("--refine", type=RefineParam(), default="auto", show_default=True,
+@click.option("--refine", type=RefineParam(), default="auto", show_default=True, metavar="K|auto",
               help="Rulings per net row, K or auto: K − 1 more between every two rows, their "
                    "ends on a cubic through the net's geodesics (arc length); the strips follow "
                    "the net between its rows and their seams meet closer. The parts' rows in "
