@@ -187,9 +187,10 @@ def planarize_strips(f: np.ndarray, columns: list[int], *, flat_angle: float = F
             deviation=deviation(a, b, P[i], Q[i]) / width, width=width,
             construction_planarity=before, polish=polish,
             rulings_ordered=_forward(a, P[i]) and _forward(b, Q[i]))
-        if not strip.rulings_ordered:
-            log.warning("%s: rulings cross (their cuts with the geodesics are out of order)",
-                        strip.id)
+        if not strip.rulings_ordered:    # said once the strips are final (crossed_strips):
+            # these may only start a template fit, or fold beyond a trim outline
+            log.debug("%s: rulings cross (their cuts with the geodesics are out of order)",
+                      strip.id)
         out.append(strip)
         if progress is not None:
             progress(1)
