@@ -133,7 +133,7 @@ def _no_nesting(*args, **kwargs):
 
 @pytest.mark.parametrize("force", [False, True])
 def test_a_missing_output_folder_fails_before_nesting(flat, tmp_path, monkeypatch, force):
-    monkeypatch.setattr("dgpc_cli.cli.nest.nest_parts", _no_nesting)
+    monkeypatch.setattr("dgpc_cli.stages.nest_run.nest_parts", _no_nesting)
     res = dgpc("nest", flat, "--sheet", "700x500", "--scale", SCALE,
                "-o", tmp_path / "missing" / "sh", *(["--force"] if force else []), expect=1)
     assert "directory does not exist" in res.stderr and len(res.stderr.strip().splitlines()) == 1
@@ -143,7 +143,7 @@ def test_an_existing_sheet_file_fails_before_nesting(flat, tmp_path, monkeypatch
     """A sheet DXF of an earlier run (whatever the sheet count) is refused without --force,
     before any nesting."""
     (tmp_path / "sh.sheet03.dxf").write_text("0\nEOF\n")
-    monkeypatch.setattr("dgpc_cli.cli.nest.nest_parts", _no_nesting)
+    monkeypatch.setattr("dgpc_cli.stages.nest_run.nest_parts", _no_nesting)
     res = dgpc("nest", flat, "--sheet", "700x500", "--scale", SCALE, "-o", tmp_path / "sh",
                expect=1)
     assert "sh.sheet03.dxf" in res.stderr and "--force" in res.stderr

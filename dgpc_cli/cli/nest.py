@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import logging
 from pathlib import Path
 
 import click
@@ -19,31 +18,9 @@ from dgpc_cli.cli.options import (
     progressbar,
     units_check_opt,
 )
-from dgpc_cli.io.artifact import artifact_paths, file_input
-from dgpc_cli.io.atomic import write_files
-from dgpc_cli.io.flat import read_flat
-from dgpc_cli.io.patch_set import with_members
-from dgpc_cli.io.rhino import rhino_path, with_3dm
-from dgpc_cli.io.sheets import extra_path, sheets_files
-from dgpc_cli.io.units import mm_per_unit, same_units
-from dgpc_cli.nesting.blf import Sheet
 from dgpc_cli.nesting.tools import TOOLS, resolve_tool
-from dgpc_cli.stages.nest import (
-    ENGINES,
-    existing_sheet_files,
-    mold_map,
-    nest_parts,
-    parse_rotations,
-    parse_sheet,
-    parts_csv,
-    sheet_drawings,
-    sheet_previews,
-    sheets_data,
-    sheets_metrics,
-    sheets_obj,
-)
-
-log = logging.getLogger(__name__)
+from dgpc_cli.stages.nest import ENGINES, parse_rotations, parse_sheet
+from dgpc_cli.stages.nest_run import NestOptions, run_nest
 
 
 def _parsed(parser):
@@ -132,69 +109,11 @@ def nest(ctx, stems, mold_stem, sheet_size, tool, kerf, tool_diameter, margin, s
     except ValueError as err:
         option, message = err.args
         raise click.BadParameter(message, ctx=ctx, param_hint=f"'{option}'") from None
-    margin, spacing = cutter.margin, cutter.spacing
-    stems = with_members(stems)
-    json_paths = [artifact_paths(stem)[0] for stem in stems]
-    check_writable(output, force, extra_path(output, "parts_csv"),
-                   *([rhino_path(output)] if fmt == "3dm" else []),
-                   *(existing_sheet_files(output) if not force else ()))
-    flats = [read_flat(stem) for stem in stems]
-    units = same_units([(str(p), f.units) for p, f in zip(json_paths, flats, strict=True)])
-    check_units(units_check, units, json_paths[0])
-    combined = None
-    if len(flats) == 1:
-        flat_parts = flats[0].parts
-    else:
-        from dgpc_cli.stages.combine_flats import combine_flats, flat_tags
-
-        combined = combine_flats(list(zip(flat_tags(stems), flats, strict=True)))
-        flat_parts = combined.parts
-    mold = None
-    if mold_stem is not None:
-        from dgpc_cli.io.mold import read_mold
-
-        mold = read_mold(mold_stem)
-        same_units([(str(json_paths[0]), units),
-                    (str(artifact_paths(mold_stem)[0]), mold.units)])
-    sheet = Sheet(sheet_size[0], sheet_size[1], margin, spacing)
-    n = len(flat_parts)
-    with progressbar(ctx, length=(2 * n if engine == "fill" else n),
-                     label="nesting") as bar:
-        result = nest_parts(flat_parts, sheet, rotations, units=units, scale=scale,
-                            engine=engine, time_limit=time_limit, seed=seed,
-                            progress=bar.update)
-    extra: dict[str, bytes] = {"parts_csv": parts_csv(result, flat_parts,
-                                                      scale * mm_per_unit(units))}
-    drawings = sheet_drawings(result, border=border, label_style=label_style)
-    for s, (dxf, _) in enumerate(drawings):
-        extra[f"sheet{s + 1:02d}_dxf"] = dxf
-    if not no_preview:
-        log.info("%d cut sheets drawn; rendering their previews", len(drawings))
-        for s, (dxf, _) in enumerate(drawings):
-            svg, png = sheet_previews(result, s, dxf)
-            extra.update({f"sheet{s + 1:02d}_svg": svg, f"sheet{s + 1:02d}_png": png})
-    out_json, _ = artifact_paths(output)
-    folder = out_json.resolve().parent
-    inputs = ({"flat": file_input(json_paths[0], folder)} if combined is None else
-              {f"flat{k + 1}": file_input(p, folder) for k, p in enumerate(json_paths)})
-    if mold is not None:
-        extra["moldmap_dxf"], extra["moldmap_png"] = mold_map(mold, scale)
-        inputs["mold"] = file_input(artifact_paths(mold_stem)[0], folder)
-    data = sheets_data(result, [d[1] for d in drawings], units=units, scale=scale,
-                       engine=engine, time_limit=time_limit, seed=seed,
-                       previews=not no_preview)
-    metrics = sheets_metrics(data)
-    if combined is not None:
-        data["combined"] = combined.record()
-        metrics["classes"] = {c["id"]: c["quantity"] for c in combined.classes}
-    parameters = {"sheet": f"{sheet.width:g}x{sheet.height:g}", "margin": margin,
-                  "spacing": spacing, **cutter.record(), "border": border,
-                  "label_style": label_style, "rotations": rotations, "units": units,
-                  "scale": scale, "engine": engine, "time_limit": time_limit, "seed": seed,
-                  "mold": mold_stem is not None}
-    files = sheets_files(output, data=data, extra=extra, obj=sheets_obj(result),
-                         inputs=inputs, parameters=parameters, metrics=metrics,
-                         status={"sheet_count": result.sheet_count,
-                                 "deterministic": engine == "fill"})
-    write_files(with_3dm(files, output, fmt, parts=flat_parts), force=force)
-    click.echo(str(out_json))
+    opts = NestOptions(sheet_size=sheet_size, cutter=cutter, rotations=rotations, border=border,
+                       label_style=label_style, scale=scale, engine=engine,
+                       time_limit=time_limit, seed=seed, previews=not no_preview)
+    run_nest(stems, output, opts, mold_stem=mold_stem, force=force, fmt=fmt,
+             check=check_writable,
+             check_units=lambda units, source: check_units(units_check, units, source),
+             progressbar=lambda length, label: progressbar(ctx, length, label),
+             written=lambda out_json: click.echo(str(out_json)))
