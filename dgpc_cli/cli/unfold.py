@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import logging
 from pathlib import Path
 
 import click
@@ -16,26 +15,9 @@ from dgpc_cli.cli.options import (
     output_opt,
 )
 from dgpc_cli.cli.patch_set_members import on_members
-from dgpc_cli.io.artifact import artifact_paths, file_input
-from dgpc_cli.io.atomic import write_files
-from dgpc_cli.io.flat import FlatArtifact, csv_path, flat_files
-from dgpc_cli.io.rhino import with_3dm
-from dgpc_cli.io.strips import read_strips
-from dgpc_cli.io.units import mm_per_unit, to_mm
-from dgpc_cli.stages.soundness import require_sound_strips
-from dgpc_cli.stages.unfold import (
-    CONGRUENCE_TOL_MM,
-    STAGGER_FRACTION,
-    flat_metrics,
-    narrow_warnings,
-    records_in_units,
-    scale_warnings,
-    template_dxfs,
-    unfold_strips,
-    unit_slip,
-)
-
-log = logging.getLogger(__name__)
+from dgpc_cli.io.flat import csv_path
+from dgpc_cli.stages.unfold import CONGRUENCE_TOL_MM, STAGGER_FRACTION
+from dgpc_cli.stages.unfold_run import UnfoldOptions, UnitSlip, run_unfold
 
 
 @click.command(short_help="Develop strips into the plane; group them into cutting templates.")
@@ -90,45 +72,11 @@ def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_st
         return
     if stagger is not None and stock_length is None:
         raise click.UsageError("--stagger goes with --stock-length")
-    json_path, _ = artifact_paths(stem)
     check_writable(output, force, csv_path(output), csv_path(output, "assembly"))
-    strips = read_strips(stem)
-    require_sound_strips(strips.geometry, [r["id"] for r in strips.records], json_path,
-                         [[p["rows"] for p in r["trim"]["parts"]] if r.get("trim") else None
-                          for r in strips.records],
-                         [[p["outline"] for p in r["trim"]["parts"]] if r.get("trim") else None
-                          for r in strips.records])
-    units = strips.units                 # computed in mm (dgpc_cli.io.units)
-    stock_mm = None if stock_length is None else stock_length.to_mm(units)
-    stagger_mm = (None if stock_length is None else stagger.to_mm(units) if stagger is not None
-                  else STAGGER_FRACTION * stock_mm)
-    geometry = [(to_mm(A, units), to_mm(B, units)) for A, B in strips.geometry]
-    slip = unit_slip(geometry, units, stock_length, stagger)
-    if slip is not None:
-        raise click.UsageError(slip)
-    parts, classes, joints = unfold_strips(
-        geometry, [r["id"] for r in strips.records], [r["v"] for r in strips.records],
-        congruence_tol=congruence_tol.to_mm(units), mirror_ok=mirror_ok,
-        stock_length=stock_mm, stagger=None if stagger is None else stagger_mm,
-        source=json_path,
-        trims=[r.get("trim") for r in strips.records],
-        cut_edges=[r.get("cut_edges") for r in strips.records],
-        template=strips.template is not None and "rejected" not in strips.template,
-        refine=strips.parameters.get("refine", 1))
-    for line in scale_warnings(parts, geometry, units, stock_length) + narrow_warnings(parts,
-                                                                                      units):
-        log.warning("%s: %s", json_path, line)
-    templates = template_dxfs(parts, classes, label_style)
-    parts, classes, joints = records_in_units(parts, classes, joints, units)
-    out_json, _ = artifact_paths(output)
-    art = FlatArtifact(
-        parts=parts, classes=classes, units=units, joints=joints, templates=templates,
-        parameters={"mirror_ok": mirror_ok, "congruence_tol": congruence_tol.text(),
-                    "label_style": label_style,
-                    "congruence_tol_mm": congruence_tol.to_mm(units),
-                    "stock_length": None if stock_mm is None else stock_mm / mm_per_unit(units),
-                    "stagger": None if stagger_mm is None else stagger_mm / mm_per_unit(units)},
-        inputs={"strips": file_input(json_path, out_json.resolve().parent)},
-        metrics=flat_metrics(parts, classes, units), status={"n_classes": len(classes)})
-    write_files(with_3dm(flat_files(output, art), output, fmt), force=force)
-    click.echo(str(out_json))
+    opts = UnfoldOptions(congruence_tol=congruence_tol, label_style=label_style,
+                         mirror_ok=mirror_ok, stock_length=stock_length, stagger=stagger)
+    try:
+        run_unfold(stem, output, opts, force=force, fmt=fmt,
+                   written=lambda out_json: click.echo(str(out_json)))
+    except UnitSlip as slip:
+        raise click.UsageError(str(slip)) from None
