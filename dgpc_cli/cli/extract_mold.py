@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import logging
-import math
 from pathlib import Path
 
 import click
@@ -21,25 +19,14 @@ from dgpc_cli.cli.options import (
     show_progress,
     units_check_opt,
 )
-from dgpc_cli.io.artifact import artifact_paths, file_input
-from dgpc_cli.io.atomic import write_files
-from dgpc_cli.io.mold import mold_files, mold_paths
-from dgpc_cli.io.net import read_net
-from dgpc_cli.io.rhino import with_3dm
-from dgpc_cli.io.units import same_units
-from dgpc_cli.mold.dxf import profile_dxf
+from dgpc_cli.io.mold import mold_paths
 from dgpc_cli.stages.extract_mold import (
     DEFAULT_FLAT_TOL,
     DEFAULT_MAX_STRAIN,
     DEFAULT_PANEL_SIZE,
-    DEFAULT_TOL_FACTOR,
     LAMBDA_CHOICES,
-    extract_mold,
-    max_length_slip,
 )
-from dgpc_cli.stages.soundness import require_sound_net
-
-log = logging.getLogger(__name__)
+from dgpc_cli.stages.extract_mold_run import MoldOptions, run_extract_mold
 
 
 class LambdaParam(click.ParamType):
@@ -108,60 +95,20 @@ def extract_mold_cmd(ctx, nets, segments, lam, panel_size, flat_tol, mold_max_le
     """
     if segments is not None and lam is not None:
         raise click.UsageError("--segments and --lambda are mutually exclusive")
-    if tol is None:
-        tol = DEFAULT_TOL_FACTOR * max_strain
     paths = mold_paths(output)
     check_writable(output, force, *(paths[k] for k in ("profile_csv", "profile_dxf",
                                                         "panels_csv", "panels_obj")))
-    loaded = [(str(artifact_paths(stem)[0]), read_net(stem)) for stem in nets]
-    for name, net in loaded:
-        require_sound_net(net.f, name)
-    unit = same_units([(name, net.units) for name, net in loaded])
-    check_units(units_check, unit, loaded[0][0])
-    given = mold_max_length
-    if mold_max_length is not None:
-        mold_max_length = mold_max_length.in_units(unit, unit)
-    mold = extract_mold([(name, net.f) for name, net in loaded], segments=segments, lam=lam,
-                        panel_size=panel_size, flat_tol=flat_tol, max_length=mold_max_length,
-                        tol=tol, max_strain=max_strain)
-    slip = max_length_slip(mold, given, unit)
-    if slip is not None:
-        raise click.UsageError(slip)
-    if show_progress(ctx):
-        click.echo(mold.choice_line(unit), err=True)
-    folder = paths["json"].resolve().parent
-    inputs = {f"net{k + 1}": file_input(name, folder) for k, (name, _) in enumerate(loaded)}
-    mer = mold.meridian
-    metrics = mold.metrics()
-    message = (f"λ lowered from {mer.requested * mer.lam / mer.segments:.6g} to {mer.lam:.6g} "
-               "so that every x(u) is real" if mer.lowered else "ok")
-    files = mold_files(
-        output,
-        profile={"r": mer.r, "h": mer.h, "d": mer.d, "l": mer.l, "x": mer.x},
-        units=unit,
-        profile_dxf=profile_dxf(mer.r, mer.h, unit, [(p.id, p.start, p.stop)
-                                                     for p in mold.pieces]),
-        segments={"segments": mer.segments, "segments_requested": mer.requested,
-                  "lambda": mer.lam, "lambda_lowered": mer.lowered},
-        sector_deg=math.degrees(mold.sector_angle),
-        pieces=[{"id": p.id, "rows": [p.start, p.stop], "meridian_length": p.length}
-                for p in mold.pieces],
-        nets=[{"input": f"net{k + 1}", "shape": list(p.shape),
-               "column_angles_deg": [math.degrees(t) for t in p.theta.tolist()],
-               "revolution_residual_max": p.residual_max} for k, p in enumerate(mold.nets)],
-        net_geometry=[net.f for _, net in loaded],
-        panels=mold.panel_records(),
-        panel_size=panel_size,
-        inputs=inputs,
-        parameters={"segments": segments, "lambda": mold.choice.how if segments is None
-                    and mold.choice.how != "value" else lam, "panel_size": panel_size,
-                    "flat_tol": flat_tol, "mold_max_length": mold_max_length,
-                    "revolution_tol": tol, "max_strain": max_strain, "units": unit},
-        metrics=metrics,
-        status={"state": "ok", "lambda_lowered": mer.lowered, "message": message},
-    )
-    write_files(with_3dm(files, output, fmt), force=force)
-    click.echo(str(paths["json"]))
-    log.info("%s: N = %.6g (λ = %.6g), %d mold pieces, %d curved and %d flat panels, isometry "
-             "error ≤ %.3g", paths["json"], mer.segments, mer.lam, metrics["pieces"],
-             metrics["panels_curved"], metrics["panels_flat"], metrics["isometry_error_max"])
+    opts = MoldOptions(segments=segments, lam=lam, panel_size=panel_size, flat_tol=flat_tol,
+                       max_length=mold_max_length, tol=tol, max_strain=max_strain)
+
+    def usage_error(message: str):
+        raise click.UsageError(message)
+
+    def chosen(line: str):
+        if show_progress(ctx):
+            click.echo(line, err=True)
+
+    run_extract_mold(nets, output, opts, force=force, fmt=fmt,
+                     check_units=lambda unit, source: check_units(units_check, unit, source),
+                     usage_error=usage_error, chosen=chosen,
+                     written=lambda json_path: click.echo(str(json_path)))

@@ -46,10 +46,10 @@ def report(stems, output, force):
     (what, from which inputs, status) and the metrics grouped into geometry, fabrication
     and solver with their units. Prints the paths written, the index last.
     """
-    from dgpc_cli.cli.inspect import artifact_kind
     from dgpc_cli.io.artifact import artifact_paths
     from dgpc_cli.io.atomic import write_files
     from dgpc_cli.io.patch_set import with_members
+    from dgpc_cli.stages.inspect_kinds import artifact_kind
     from dgpc_cli.stages.report import overview_files, previous_report_files, report_files
 
     json_paths = [artifact_paths(stem)[0] for stem in with_members(stems)]
