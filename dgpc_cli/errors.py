@@ -19,6 +19,12 @@ class DgpcError(Exception):
         super().__init__(f"{self.source}: {self.reason}" if self.source else self.reason)
 
 
+class OptionSlip(Exception):
+    """An option's value found wrong only once the stage has read its input (a plain number in
+    the artifact's unit that was likely meant in mm): the command reports it as a usage error
+    (exit 2), the one-line message its ``str``; nothing is written."""
+
+
 class NotConverged(DgpcError):
     """The optimization did not reach its tolerance; the artifact is still written (exit 3)."""
 

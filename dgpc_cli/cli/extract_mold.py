@@ -19,6 +19,7 @@ from dgpc_cli.cli.options import (
     show_progress,
     units_check_opt,
 )
+from dgpc_cli.errors import OptionSlip
 from dgpc_cli.io.mold import mold_paths
 from dgpc_cli.stages.extract_mold import (
     DEFAULT_FLAT_TOL,
@@ -101,14 +102,13 @@ def extract_mold_cmd(ctx, nets, segments, lam, panel_size, flat_tol, mold_max_le
     opts = MoldOptions(segments=segments, lam=lam, panel_size=panel_size, flat_tol=flat_tol,
                        max_length=mold_max_length, tol=tol, max_strain=max_strain)
 
-    def usage_error(message: str):
-        raise click.UsageError(message)
-
     def chosen(line: str):
         if show_progress(ctx):
             click.echo(line, err=True)
 
-    run_extract_mold(nets, output, opts, force=force, fmt=fmt,
-                     check_units=lambda unit, source: check_units(units_check, unit, source),
-                     usage_error=usage_error, chosen=chosen,
-                     written=lambda json_path: click.echo(str(json_path)))
+    try:
+        run_extract_mold(nets, output, opts, force=force, fmt=fmt,
+                         check_units=lambda unit, source: check_units(units_check, unit, source),
+                         chosen=chosen, written=lambda json_path: click.echo(str(json_path)))
+    except OptionSlip as slip:
+        raise click.UsageError(str(slip)) from None

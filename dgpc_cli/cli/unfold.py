@@ -15,9 +15,10 @@ from dgpc_cli.cli.options import (
     output_opt,
 )
 from dgpc_cli.cli.patch_set_members import on_members
+from dgpc_cli.errors import OptionSlip
 from dgpc_cli.io.flat import csv_path
 from dgpc_cli.stages.unfold import CONGRUENCE_TOL_MM, STAGGER_FRACTION
-from dgpc_cli.stages.unfold_run import UnfoldOptions, UnitSlip, run_unfold
+from dgpc_cli.stages.unfold_run import UnfoldOptions, run_unfold
 
 
 @click.command(short_help="Develop strips into the plane; group them into cutting templates.")
@@ -78,5 +79,5 @@ def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_st
     try:
         run_unfold(stem, output, opts, force=force, fmt=fmt,
                    written=lambda out_json: click.echo(str(out_json)))
-    except UnitSlip as slip:
+    except OptionSlip as slip:
         raise click.UsageError(str(slip)) from None

@@ -9,6 +9,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from dgpc_cli.errors import OptionSlip
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.mold import mold_files, mold_paths
@@ -83,14 +84,13 @@ def _files(output: Path, opts: MoldOptions, mold, metrics: dict, loaded, unit: s
 
 def run_extract_mold(nets: list[Path], output: Path, opts: MoldOptions, *, force: bool, fmt,
                      check_units: Callable[[str, str], None],
-                     usage_error: Callable[[str], None],
                      chosen: Callable[[str], None],
                      written: Callable[[Path], None]) -> None:
     """Extract the mold of the nets ``nets`` into the mold artifact ``output``.
 
     ``check_units(unit, source)`` checks the nets' unit against the one the user expects
-    (raising where they differ); ``usage_error(message)`` raises the usage error of a plain
-    ``--mold-max-length`` likely meant in mm (nothing is written); ``chosen(line)`` is given
+    (raising where they differ); a plain ``--mold-max-length`` likely meant in mm raises
+    :class:`~dgpc_cli.errors.OptionSlip` (nothing is written); ``chosen(line)`` is given
     the one line saying which surface of revolution the mold is; ``written(json_path)`` is
     called once the files are written."""
     tol = opts.tol if opts.tol is not None else DEFAULT_TOL_FACTOR * opts.max_strain
@@ -106,7 +106,7 @@ def run_extract_mold(nets: list[Path], output: Path, opts: MoldOptions, *, force
                         max_length=max_length, tol=tol, max_strain=opts.max_strain)
     slip = max_length_slip(mold, given, unit)
     if slip is not None:
-        usage_error(slip)
+        raise OptionSlip(slip)
     chosen(mold.choice_line(unit))
     metrics = mold.metrics()
     files = _files(output, opts, mold, metrics, loaded, unit, tol, max_length)

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from dgpc_cli.errors import OptionSlip
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.flat import FlatArtifact, flat_files
@@ -28,12 +29,6 @@ from dgpc_cli.stages.unfold import (
 )
 
 log = logging.getLogger(__name__)
-
-
-class UnitSlip(Exception):
-    """A plain ``--stock-length`` or ``--stagger`` in the strips' unit that was likely meant in
-    mm (:func:`~dgpc_cli.stages.unfold.unit_slip`): a usage error, the one-line message its
-    ``str``."""
 
 
 @dataclass(frozen=True)
@@ -66,8 +61,9 @@ def run_unfold(stem: Path, output: Path, opts: UnfoldOptions, *, force: bool, fm
     """Unfold the strips artifact ``stem`` into the flat artifact ``output``.
 
     The strips are developed in mm and the records written in the strips' unit.
-    ``written(out_json)`` is called once the files are written. Raises :class:`UnitSlip`
-    (before any work) where a plain length was likely meant in mm."""
+    ``written(out_json)`` is called once the files are written. Raises
+    :class:`~dgpc_cli.errors.OptionSlip` (before any work) where a plain length was likely
+    meant in mm."""
     strips, json_path = _read_sound(stem)
     units = strips.units                 # computed in mm (dgpc_cli.io.units)
     stock_length, stagger, congruence_tol = opts.stock_length, opts.stagger, opts.congruence_tol
@@ -77,7 +73,7 @@ def run_unfold(stem: Path, output: Path, opts: UnfoldOptions, *, force: bool, fm
     geometry = [(to_mm(A, units), to_mm(B, units)) for A, B in strips.geometry]
     slip = unit_slip(geometry, units, stock_length, stagger)
     if slip is not None:
-        raise UnitSlip(slip)
+        raise OptionSlip(slip)
     parts, classes, joints = unfold_strips(
         geometry, [r["id"] for r in strips.records], [r["v"] for r in strips.records],
         congruence_tol=congruence_tol.to_mm(units), mirror_ok=opts.mirror_ok,
