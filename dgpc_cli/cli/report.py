@@ -46,18 +46,6 @@ def report(stems, output, force):
     (what, from which inputs, status) and the metrics grouped into geometry, fabrication
     and solver with their units. Prints the paths written, the index last.
     """
-    from dgpc_cli.io.artifact import artifact_paths
-    from dgpc_cli.io.atomic import write_files
-    from dgpc_cli.io.patch_set import with_members
-    from dgpc_cli.stages.inspect_kinds import artifact_kind
-    from dgpc_cli.stages.report import overview_files, previous_report_files, report_files
+    from dgpc_cli.stages.report_run import run_report
 
-    json_paths = [artifact_paths(stem)[0] for stem in with_members(stems)]
-    kinds = [artifact_kind(p) for p in json_paths]
-    if len(json_paths) == 1:
-        files = report_files(json_paths[0], kinds[0], output)
-    else:
-        files = overview_files(list(zip(json_paths, kinds, strict=True)), output)
-    write_files(files, force=force, replaces=previous_report_files(output))
-    for p in files:
-        click.echo(str(p))
+    run_report(stems, output, force=force, written=lambda p: click.echo(str(p)))
