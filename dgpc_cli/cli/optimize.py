@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import logging
 from pathlib import Path
 
 import click
@@ -13,23 +12,11 @@ from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_o
 from dgpc_cli.cli.patch_set_members import on_members
 from dgpc_cli.cli.progress import SolverProgress
 from dgpc_cli.core.solver.linear import BACKENDS
-from dgpc_cli.errors import NotConverged
-from dgpc_cli.io.artifact import artifact_paths, load_envelope
-from dgpc_cli.io.atomic import write_files
-from dgpc_cli.io.handles import read_handles
-from dgpc_cli.io.net import net_files, net_shape
-from dgpc_cli.io.rhino import with_3dm
+from dgpc_cli.errors import OptionSlip
 from dgpc_cli.stages.modes import MODES, mode_weights
-from dgpc_cli.stages.net_size import OPTIMIZE_BYTES_PER_VERTEX, check_net_size
-from dgpc_cli.stages.optimize_artifact import (
-    OptimizeSettings,
-    optimize_prepared,
-    optimized_artifact,
-    prepare_optimize,
-)
+from dgpc_cli.stages.optimize_artifact import OptimizeSettings
+from dgpc_cli.stages.optimize_run import run_optimize
 from dgpc_cli.tolerances import tol as TOL
-
-log = logging.getLogger(__name__)
 
 
 @click.command(short_help="Optimize a net (fit, developable, revolution, isometric).")
@@ -97,33 +84,14 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
         raise click.BadParameter(str(err), ctx=ctx, param_hint="--weight") from None
     if no_reference and reference is not None:
         raise click.UsageError("give --reference or --no-reference, not both")
-    json_path, _ = artifact_paths(stem)
     check_writable(output, force)
-    m, n = net_shape(load_envelope(json_path, "net")["data"], json_path)
-    check_net_size(m, n, str(json_path), "optimize a coarser net (init --rows/--cols)",
-                   per_vertex=OPTIMIZE_BYTES_PER_VERTEX[mode],
-                   what=f"optimizing ({mode}) a net of")
     settings = OptimizeSettings(mode, schedules, steps=steps, max_iter=max_iter, tol=tol,
                                 max_strain=max_strain, gpc_tol=gpc_tol, backend=backend,
                                 coverage_tol=coverage_tol)
-    prepared = prepare_optimize(stem, settings, reference=reference, no_reference=no_reference,
-                                weights=weights)
-    net = prepared.net
-    handle_ids = handle_targets = None
-    if handles is not None:
-        handle_ids, handle_targets = read_handles(handles, net.shape, net.f_mm,
-                                                  scale=prepared.mm)
-    if mode == "isometric" and handle_ids is None:
-        raise click.UsageError("--mode isometric needs --handles")
-
-    with SolverProgress(ctx, f"optimize ({mode})", tol) as progress:
-        outcome = optimize_prepared(prepared, handle_ids, handle_targets, progress=progress)
-    result = optimized_artifact(prepared, outcome, output, handles, handle_ids, handle_targets)
-    out_json, _ = artifact_paths(output)
-    write_files(with_3dm(net_files(output, result), output, fmt), force=force)
-    click.echo(str(out_json))
-    log.info("%s: %s, %d iterations, R = %.3g", out_json, outcome.status, outcome.iterations,
-             result.metrics["R"])
-    if not outcome.converged:
-        raise NotConverged(f"{outcome.status.replace('_', ' ')}: {outcome.message}; written "
-                           "anyway", source=out_json)
+    try:
+        run_optimize(stem, output, settings, reference=reference, no_reference=no_reference,
+                     weights=weights, handles=handles, force=force, fmt=fmt,
+                     solver_progress=lambda label, target: SolverProgress(ctx, label, target),
+                     written=lambda out_json: click.echo(str(out_json)))
+    except OptionSlip as slip:
+        raise click.UsageError(str(slip)) from None
