@@ -35,6 +35,7 @@ from dgpc_cli.stages.strip_fabrication import (
     SEAM_STEP_WARN,
     fabrication_metrics,
     fabrication_warnings,
+    missed_targets,
 )
 
 log = logging.getLogger(__name__)
@@ -101,8 +102,6 @@ class _Fitted:
 
     art: StripsArtifact
     strips: list
-    failed: list[str]
-    crossed: list[str]
     notes: list[str]          # what the trim dropped
 
 
@@ -140,7 +139,7 @@ def _artifact(net, json_path: Path, out_json: Path, columns, outline, opts: Plan
                                                     refine=refine)},
         status={"polished": len(polished), "polish_not_converged": failed,
                 "rulings_cross": crossed})
-    return _Fitted(art, strips, failed, crossed, notes)
+    return _Fitted(art, strips, notes)
 
 
 def _figures(art: StripsArtifact) -> dict:
@@ -148,14 +147,6 @@ def _figures(art: StripsArtifact) -> dict:
     fab = art.metrics["fabrication"]
     return {"deviation": fab.get("max_deviation_relative"),
             "seam_step": fab.get("max_seam_step_relative")}
-
-
-def _misses(figures: dict) -> bool:
-    """Whether the figures miss the targets :data:`DEVIATION_WARN` or :data:`SEAM_STEP_WARN`
-    (a figure that cannot be measured, None or NaN, misses nothing)."""
-    return any(v is not None and v == v and v > limit
-               for v, limit in ((figures["deviation"], DEVIATION_WARN),
-                                (figures["seam_step"], SEAM_STEP_WARN)))
 
 
 def _better(fine: dict, coarse: dict) -> bool:
@@ -177,7 +168,7 @@ def _auto_refine(first: _Fitted, fit_again) -> _Fitted:
     targets, else the strips of ``fit_again()`` (K = 2) where :func:`_better`; the choice is
     recorded in the kept artifact's ``parameters.refine_auto`` and said in one stderr line."""
     coarse = _figures(first.art)
-    if first.art.template is None or not _misses(coarse):
+    if first.art.template is None or not missed_targets(first.art.metrics["fabrication"]):
         return first
     second = fit_again()
     fine = _figures(second.art)
@@ -220,7 +211,8 @@ def run_planarize_strips(stem: Path, output: Path, opts: PlanarizeOptions, *, fo
         done = _auto_refine(run(1), lambda: run(2))
     else:
         done = run(opts.refine)
-    art, failed, crossed = done.art, done.failed, done.crossed
+    art = done.art
+    failed, crossed = art.status["polish_not_converged"], art.status["rulings_cross"]
     for note in done.notes:
         log.warning("%s", note)
     write_files(with_3dm(strips_files(output, art), output, fmt), force=force)

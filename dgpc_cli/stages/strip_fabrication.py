@@ -28,6 +28,15 @@ AREA_WARN = 1e-3
 #: width (≤ 1.5 %), or a seam steps by more than this share (≤ 1 %).
 DEVIATION_WARN = 0.015
 SEAM_STEP_WARN = 0.01
+#: The targets by figure (``max_<key>_relative`` of ``metrics.fabrication``).
+TARGETS = {"deviation": DEVIATION_WARN, "seam_step": SEAM_STEP_WARN}
+
+
+def missed_targets(fab: dict) -> list[str]:
+    """The keys of :data:`TARGETS` whose figure in ``metrics.fabrication`` ``fab`` exceeds its
+    target (a figure that cannot be measured, None or NaN, misses nothing)."""
+    return [key for key, limit in TARGETS.items()
+            if (v := fab.get(f"max_{key}_relative")) is not None and v == v and v > limit]
 
 
 def fabrication_warnings(fab: dict) -> list[str]:
@@ -42,13 +51,11 @@ def fabrication_warnings(fab: dict) -> list[str]:
             (abs(g) for g in fab["per_strip"][i]["end_gaps_mm"] if g is not None), default=-1.0))
         out.append(f"strips end up to {gap:.4g} mm from the net's edge rows ({worst}): built "
                    "as cut, the design has gaps along its edges")
-    for key, limit, what in (("deviation", DEVIATION_WARN, "deviate from the net"),
-                             ("seam_step", SEAM_STEP_WARN, "step at their seams")):
-        worst = fab.get(f"max_{key}_relative")
-        if worst is not None and worst == worst and worst > limit:
-            out.append(f"the strips {what} by up to {fab[f'max_{key}_mm']:.3g} mm "
-                       f"({100 * worst:.2f} % of the mean strip width, target "
-                       f"{100 * limit:g} %)")
+    what = {"deviation": "deviate from the net", "seam_step": "step at their seams"}
+    for key in missed_targets(fab):
+        out.append(f"the strips {what[key]} by up to {fab[f'max_{key}_mm']:.3g} mm "
+                   f"({100 * fab[f'max_{key}_relative']:.2f} % of the mean strip width, "
+                   f"target {100 * TARGETS[key]:g} %)")
     if ratio is not None and abs(ratio - 1.0) > AREA_WARN:
         out.append(f"the strips' area is {100 * ratio:.2f} % of the {fab['area_reference']}'s "
                    f"({fab['area_m2']:.4g} of {fab['reference_area_m2']:.4g} m²)")
