@@ -3,7 +3,7 @@
 The page only shows frames and forwards the designer's gestures to ``actions`` (an object with
 ``drag(u, v, target, end)``, ``pin(u, v)``, ``release(u, v)``, ``undo()``, ``redo()``,
 ``save()`` and ``fabrication(on)``); the solving happens elsewhere, off the page's threads.
-A frame (see ``stages.edit_session.Frame``) carries the net in its unit, a colour field per
+A frame (see ``dgpc_cli.edit.session.Frame``) carries the net in its unit, a colour field per
 vertex, the pleated and creased vertices, the handles and the status line.
 """
 

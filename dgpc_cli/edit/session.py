@@ -350,7 +350,7 @@ class EditSession:
     # -- fabrication ---------------------------------------------------------------------
     def fabrication(self) -> dict:
         """The fabrication figures of the net on screen (see :func:`fabrication_figures`)."""
-        from dgpc_cli.stages.edit_fabrication import fabrication_figures
+        from dgpc_cli.edit.fabrication import fabrication_figures
 
         return fabrication_figures(self.f_mm, self.prepared.net.units)
 
