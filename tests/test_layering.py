@@ -12,13 +12,13 @@ from dgpc_cli.stages.init_nets import init_nets
 PACKAGE = Path(dgpc_cli.__file__).parent
 
 
-def cli_imports(source: str) -> list[str]:
-    """The modules of ``dgpc_cli.cli`` that ``source`` imports."""
+def cli_imports(source: str, package: str = "dgpc_cli.cli") -> list[str]:
+    """The modules of ``package`` (default ``dgpc_cli.cli``) that ``source`` imports."""
     found = []
     for node in ast.walk(ast.parse(source)):
         names = ([a.name for a in node.names] if isinstance(node, ast.Import)
                  else [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
-        found += [n for n in names if n == "dgpc_cli.cli" or n.startswith("dgpc_cli.cli.")]
+        found += [n for n in names if n == package or n.startswith(package + ".")]
     return found
 
 
@@ -40,6 +40,20 @@ def test_no_package_below_the_command_line_imports_it():
         if found:
             upward[str(rel)] = found
     assert upward == {}
+
+
+def test_nothing_below_the_editor_imports_it():
+    """``dgpc_cli.edit`` sits above the stages: only the command line imports it."""
+    upward = {}
+    for path in sorted(PACKAGE.rglob("*.py")):
+        rel = path.relative_to(PACKAGE)
+        if rel.parts[0] in ("cli", "edit") or rel.name == "__main__.py":
+            continue
+        found = cli_imports(path.read_text(encoding="utf-8"), "dgpc_cli.edit")
+        if found:
+            upward[str(rel)] = found
+    assert upward == {}
+    assert cli_imports("from dgpc_cli.edit.session import EditSession\n", "dgpc_cli.edit")
 
 
 def test_init_stage_makes_and_writes_a_net_without_the_command(tmp_path):

@@ -9,8 +9,6 @@ vertex, the pleated and creased vertices, the handles and the status line.
 
 from __future__ import annotations
 
-import contextlib
-import io
 import logging
 import threading
 
@@ -18,6 +16,15 @@ import numpy as np
 import viser
 
 from dgpc_cli.edit.colours import field_colours, legend
+from dgpc_cli.edit.page_input import (
+    BadInput,
+    direction,
+    guarded,
+    number,
+    vector,
+    within_reach,
+)
+from dgpc_cli.edit.viser_logs import route_viser_output
 
 log = logging.getLogger(__name__)
 
@@ -83,17 +90,20 @@ class EditPage:
                  max_strain: float = 3e-4):
         self.actions = actions
         self.limit = max_strain
-        # a browser tab that closes mid-handshake is no error of the design session
-        logging.getLogger("websockets").setLevel(logging.CRITICAL)
-        banner = io.StringIO()
-        with contextlib.redirect_stdout(banner):     # viser prints its address: stdout is data
-            self.server = viser.ViserServer(host=host, port=port, label=title, verbose=False)
-        log.debug("%s", banner.getvalue())
-        self.server.gui.configure_theme(control_width="large", show_logo=False)
+        route_viser_output()            # viser's prints and errors: one stderr line each
+        self.server = viser.ViserServer(host=host, port=port, label=title, verbose=False)
+        # no public share link: the page stays where --host puts it
+        self.server.request_share_url = self._no_share
+        self.server.gui.configure_theme(control_width="large", show_logo=False,
+                                        show_share_button=False)
         self.server.scene.set_up_direction("+z")
         self.server.scene.configure_fog(1e9, 2e9, enabled=False)   # a far net stays vivid
         self.shape = first.f.shape[:2]
         m, n = self.shape
+        pts0 = first.f.reshape(-1, 3)
+        self.box = (pts0.min(axis=0), pts0.max(axis=0))    # the reach of a handle's target
+        self._accepted: dict[tuple[int, int], tuple[float, float, float]] = {}
+        self._targets: dict[tuple[int, int], tuple[float, float, float]] = {}
         self._lock = threading.RLock()
         self._gizmos: dict[tuple[int, int], object] = {}
         self._dragging: set[tuple[int, int]] = set()
@@ -151,13 +161,14 @@ class EditPage:
             self.fab_on = gui.add_checkbox("Fabrication figures (when settled)", False)
             self.fabrication = gui.add_markdown("")
 
-        release.on_click(lambda _: self.selected and self.actions.release(*self.selected))
-        pin.on_click(lambda _: self.selected and self.actions.pin(*self.selected))
-        undo.on_click(lambda _: self.actions.undo())
-        redo.on_click(lambda _: self.actions.redo())
-        save.on_click(lambda _: self._save())
-        self.fab_on.on_update(lambda _: self.actions.fabrication(self.fab_on.value))
-        self.push.on_update(lambda _: self._pushed())
+        release.on_click(guarded("release")(
+            lambda _: self.selected and self.actions.release(*self.selected)))
+        pin.on_click(guarded("pin")(lambda _: self.selected and self.actions.pin(*self.selected)))
+        undo.on_click(guarded("undo")(lambda _: self.actions.undo()))
+        redo.on_click(guarded("redo")(lambda _: self.actions.redo()))
+        save.on_click(guarded("save")(lambda _: self._save()))
+        self.fab_on.on_update(guarded("fabrication switch")(lambda _: self._fabrication()))
+        self.push.on_update(guarded("push")(lambda _: self._pushed()))
 
     def _view(self, f: np.ndarray) -> None:
         look_at, position = initial_camera(f)
@@ -171,15 +182,28 @@ class EditPage:
         return f"http://{_url_host(self.server.get_host())}:{self.server.get_port()}/"
 
     # -- gestures ------------------------------------------------------------------------
+    def _no_share(self, *args, **kwargs) -> None:
+        log.warning("edit: the page asked for a public share link; refused (the page listens "
+                    "where --host says only)")
+
+    def _fabrication(self) -> None:
+        on = self.fab_on.value
+        if not isinstance(on, bool):
+            raise BadInput(f"fabrication switch: {on!r} is not true or false")
+        self.actions.fabrication(on)
+
+    @guarded("click")
     def _clicked(self, event) -> None:
         """Select the vertex nearest to the clicked ray; a vertex that is no handle becomes
         one, held where it is."""
         f = self._f.reshape(-1, 3)
-        o, d = np.asarray(event.ray_origin), np.asarray(event.ray_direction)
-        d = d / np.linalg.norm(d)
+        o = vector(event.ray_origin, "click: ray origin")
+        d = direction(event.ray_direction, "click: ray direction")
         rel = f - o
         along = rel @ d
         off = np.linalg.norm(rel - along[:, None] * d, axis=1)
+        if not (along > 0).any():
+            raise BadInput("click: the ray passes no vertex of the net")
         vid = int(np.argmin(np.where(along > 0, off, np.inf)))
         u, v = divmod(vid, self.shape[1])
         self.select((u, v))
@@ -205,13 +229,16 @@ class EditPage:
     def _pushed(self) -> None:
         """The push slider moved: drag the selected handle along the normal; the drag ends
         ``PUSH_SETTLE`` seconds after the last move."""
-        if self._resetting or self.selected is None:
+        if self._resetting:
             return
+        push = number(self.push.value, -PUSH_RANGE, PUSH_RANGE, "push")
         index = self.selected
+        if index is None:
+            return
         if self._push_base is None:
             self._push_base = (self._f[index].copy(), vertex_normal(self._f, *index))
         base, normal = self._push_base
-        target = tuple(float(c) for c in base + self.push.value * self.scale * normal)
+        target = tuple(float(c) for c in base + push * self.scale * normal)
         self.actions.drag(index[0], index[1], target, False)
         if self._push_timer is not None:
             self._push_timer.cancel()
@@ -224,9 +251,12 @@ class EditPage:
         self.saved.content = "saving…"
         self.actions.save()
 
+    @guarded("gizmo move")
     def _gizmo_moved(self, index: tuple[int, int], handle, event) -> None:
+        """A gizmo's drag: its start selects the handle; each move drags it to the gizmo's
+        position (checked: finite, within reach of the net); the end ends the drag (at the
+        last position accepted, where the end's own is refused)."""
         phase = getattr(event, "phase", "update")
-        log.debug("gizmo %s: %s at %s", index, phase, tuple(handle.position))
         if phase == "start":
             self._dragging.add(index)
             self.select(index)
@@ -234,7 +264,16 @@ class EditPage:
         end = phase == "end"
         if end:
             self._dragging.discard(index)
-        self.actions.drag(index[0], index[1], tuple(float(c) for c in handle.position), end)
+        try:
+            target = vector(handle.position, f"gizmo ({index[0]}, {index[1]})")
+            within_reach(target, self.box, f"gizmo ({index[0]}, {index[1]})")
+        except BadInput:
+            self._restore_gizmo(index)
+            if end and index in self._accepted:
+                self.actions.drag(index[0], index[1], self._accepted[index], True)
+            raise
+        self._accepted[index] = tuple(float(c) for c in target)
+        self.actions.drag(index[0], index[1], self._accepted[index], end)
 
     # -- frames --------------------------------------------------------------------------
     def show(self, frame) -> None:
@@ -271,29 +310,43 @@ class EditPage:
 
     def _sync_gizmos(self, frame) -> None:
         wanted = {(u, v): target for u, v, target in frame.handles}
+        self._targets = wanted
         for index in list(self._gizmos):
             if index not in wanted:
                 self._gizmos.pop(index).remove()
         for index, target in wanted.items():
             gizmo = self._gizmos.get(index)
             if gizmo is None:
-                gizmo = self.server.scene.add_transform_controls(
-                    f"/handles/h{index[0]}_{index[1]}", scale=GIZMO_SIZE * self.scale,
-                    line_width=GIZMO_LINE, disable_rotations=True, depth_test=False,
-                    position=target)
-                gizmo.on_update(lambda event, i=index, g=gizmo: self._gizmo_moved(i, g, event))
-                self._gizmos[index] = gizmo
+                self._new_gizmo(index, target)
             elif index not in self._dragging and frame.settled:
                 gizmo.position = target
 
-    def saved_to(self, text: str) -> None:
+    def _new_gizmo(self, index: tuple[int, int], target) -> None:
+        """A gizmo for the handle ``index`` at ``target`` (one there before is replaced)."""
+        old = self._gizmos.pop(index, None)
+        if old is not None:
+            old.remove()
+        gizmo = self.server.scene.add_transform_controls(
+            f"/handles/h{index[0]}_{index[1]}", scale=GIZMO_SIZE * self.scale,
+            line_width=GIZMO_LINE, disable_rotations=True, depth_test=False,
+            position=target)
+        gizmo.on_update(lambda event, i=index, g=gizmo: self._gizmo_moved(i, g, event))
+        self._gizmos[index] = gizmo
+
+    def _restore_gizmo(self, index: tuple[int, int]) -> None:
+        """Put the gizmo of ``index`` back where the handle is, after a refused position
+        (viser keeps what it was sent, of any shape: the gizmo is made anew)."""
+        with self._lock:
+            target = self._accepted.get(index, self._targets.get(index))
+            if target is not None and index in self._gizmos:
+                self._new_gizmo(index, target)
+
+    def saved_to(self, text: str, saved: bool = False) -> None:
+        """Say what the last save did (``saved``: it wrote the artifact)."""
         self.saved.content = text
 
     def stop(self) -> None:
-        banner = io.StringIO()
-        with contextlib.redirect_stdout(banner):     # viser says it stopped: stdout is data
-            self.server.stop()
-        log.debug("%s", banner.getvalue())
+        self.server.stop()
 
 
 def _url_host(host: str) -> str:

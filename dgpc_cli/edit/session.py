@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from dgpc_cli.core.solver import guided_projection, predictor_step
+from dgpc_cli.edit.page_input import vector, within_reach
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths
 from dgpc_cli.io.atomic import write_files
@@ -234,9 +235,12 @@ class EditSession:
         ``live_iter`` iterations of guided projection from the net on screen, or, for up to
         ``REFACTOR − 1`` events after one, the predictor step of its last factorization."""
         vid = self.vertex_id(u, v)
+        point = vector(target, f"handle ({u}, {v}): target")
+        f_in = self.prepared.net.f_mm.reshape(-1, 3) / self.prepared.mm
+        within_reach(point, (f_in.min(axis=0), f_in.max(axis=0)), f"handle ({u}, {v}): target")
         if self.outcome is not None or vid not in self.handles:
             self._remember()         # one undo step per drag, taken at its first event
-        self.handles[vid] = tuple(float(c) for c in target)
+        self.handles[vid] = tuple(float(c) for c in point)
         self.outcome = None
         ids, targets = self.handle_arrays()
         live = self._live_problem(ids, targets)
@@ -332,12 +336,16 @@ class EditSession:
         beside the artifact) and the net artifact ``optimize`` writes for it to ``output``
         (both overwritten: the session's own files). Returns the outcome (its ``converged``
         decides the exit code, as in ``optimize``)."""
-        outcome = self.settle()
+        out_json, _ = artifact_paths(output)
         ids, targets = self.handle_arrays()
+        if targets is not None and not np.isfinite(targets).all():
+            raise DgpcError("a handle's target is not finite: not saved", source=out_json)
+        outcome = self.settle()
         if outcome is None:
             raise DgpcError(f"--mode {self.mode} needs handles: pin or drag a vertex first",
                             source="handles")
-        out_json, _ = artifact_paths(output)
+        if not np.isfinite(outcome.f).all():
+            raise DgpcError("the settled net is not finite: not saved", source=out_json)
         handles_path = Path(handles_path or handles_file(output))
         n = self.shape[1]
         write_files({handles_path: handles_bytes(ids, n, targets / self.prepared.mm)},
