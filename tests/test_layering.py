@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 import dgpc_cli
-from dgpc_cli.stages.init_nets import init_nets
+from dgpc_cli.stages.init import init_nets
 
 PACKAGE = Path(dgpc_cli.__file__).parent
 
