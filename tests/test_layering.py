@@ -7,18 +7,20 @@ from pathlib import Path
 import numpy as np
 
 import dgpc_cli
-from dgpc_cli.stages.init_nets import init_nets
+from dgpc_cli.stages.init import init_nets
 
 PACKAGE = Path(dgpc_cli.__file__).parent
 
 
-def cli_imports(source: str, package: str = "dgpc_cli.cli") -> list[str]:
-    """The modules of ``package`` (default ``dgpc_cli.cli``) that ``source`` imports."""
+def cli_imports(source: str, package: str = "cli") -> list[str]:
+    """The modules of ``dgpc_cli.PACKAGE`` (default: the command line) that ``source``
+    imports."""
     found = []
+    top = f"dgpc_cli.{package}"
     for node in ast.walk(ast.parse(source)):
         names = ([a.name for a in node.names] if isinstance(node, ast.Import)
                  else [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
-        found += [n for n in names if n == package or n.startswith(package + ".")]
+        found += [n for n in names if n == top or n.startswith(top + ".")]
     return found
 
 
@@ -49,11 +51,26 @@ def test_nothing_below_the_editor_imports_it():
         rel = path.relative_to(PACKAGE)
         if rel.parts[0] in ("cli", "edit") or rel.name == "__main__.py":
             continue
-        found = cli_imports(path.read_text(encoding="utf-8"), "dgpc_cli.edit")
+        found = cli_imports(path.read_text(encoding="utf-8"), "edit")
         if found:
             upward[str(rel)] = found
     assert upward == {}
-    assert cli_imports("from dgpc_cli.edit.session import EditSession\n", "dgpc_cli.edit")
+    assert cli_imports("from dgpc_cli.edit.session import EditSession\n", "edit")
+
+
+def test_the_layout_of_nets_imports_no_stage():
+    """``dgpc_cli.layout`` (laying nets on meshes) sits below the stages: it imports neither
+    them nor anything above them."""
+    assert cli_imports("from dgpc_cli.stages.optimize import optimize_net\n", "stages") == [
+        "dgpc_cli.stages.optimize"]
+    upward = {}
+    for path in sorted((PACKAGE / "layout").rglob("*.py")):
+        source = path.read_text(encoding="utf-8")
+        found = [m for package in ("stages", "cli", "edit", "batch")
+                 for m in cli_imports(source, package)]
+        if found:
+            upward[path.name] = found
+    assert upward == {}
 
 
 def test_init_stage_makes_and_writes_a_net_without_the_command(tmp_path):
