@@ -20,8 +20,8 @@ from edit_client import PageClient
 
 from dgpc_cli.edit.session import EditSession
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.fitting.modes import mode_weights
 from dgpc_cli.io.net import read_net
-from dgpc_cli.stages.modes import mode_weights
 from dgpc_cli.stages.optimize_artifact import OptimizeSettings, prepare_optimize
 
 M, N = 9, 7

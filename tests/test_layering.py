@@ -61,8 +61,8 @@ def test_nothing_below_the_editor_imports_it():
 def test_the_layout_of_nets_imports_no_stage():
     """``dgpc_cli.layout`` (laying nets on meshes) sits below the stages: it imports neither
     them nor anything above them."""
-    assert cli_imports("from dgpc_cli.stages.optimize import optimize_net\n", "stages") == [
-        "dgpc_cli.stages.optimize"]
+    assert cli_imports("from dgpc_cli.stages.init import init_nets\n", "stages") == [
+        "dgpc_cli.stages.init"]
     upward = {}
     for path in sorted((PACKAGE / "layout").rglob("*.py")):
         source = path.read_text(encoding="utf-8")

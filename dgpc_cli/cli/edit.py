@@ -11,8 +11,8 @@ from dgpc_cli.cli.options import check_writable, force_opt, output_opt
 from dgpc_cli.core.solver.linear import BACKENDS
 from dgpc_cli.edit.serve import run_edit
 from dgpc_cli.edit.session import handles_file
+from dgpc_cli.fitting.modes import mode_weights
 from dgpc_cli.io.artifact import artifact_paths
-from dgpc_cli.stages.modes import mode_weights
 from dgpc_cli.stages.optimize_artifact import OptimizeSettings
 from dgpc_cli.tolerances import tol as TOL
 

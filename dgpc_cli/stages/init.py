@@ -50,9 +50,9 @@ def quick_fitter(f: np.ndarray, surface, on_mesh: bool, iterations: int):
     polish of a nearly gpc net; the rim held to the mesh's boundary where the net is traced on
     the mesh itself, ``on_mesh``) of the net ``f`` to ``surface``; the fitted net and the
     iterations run."""
-    from dgpc_cli.stages.modes import SOFT, mode_weights
-    from dgpc_cli.stages.optimize import boundary_vertices, optimize_net
-    from dgpc_cli.stages.polish import polish_weights
+    from dgpc_cli.fitting.modes import SOFT, mode_weights
+    from dgpc_cli.fitting.optimize import boundary_vertices, optimize_net
+    from dgpc_cli.fitting.polish import polish_weights
 
     weights = polish_weights(f, mode_weights("fit"))
     rim = (boundary_vertices(f, surface) if on_mesh and weights["boundary"].end > 0

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from dgpc_cli.errors import DgpcError, NotConverged
+from dgpc_cli.fitting.soundness import require_sound_net
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import read_net
@@ -29,7 +30,6 @@ from dgpc_cli.stages.planarize import (
     template_strips,
     trim_records,
 )
-from dgpc_cli.stages.soundness import require_sound_net
 from dgpc_cli.stages.strip_fabrication import (
     DEVIATION_WARN,
     SEAM_STEP_WARN,
