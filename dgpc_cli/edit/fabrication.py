@@ -1,45 +1,165 @@
-"""Fabrication figures of a net being edited (``dgpc edit``): what ``planarize-strips``,
-``unfold`` and ``extract-mold`` would make of it, run in memory on the stage functions."""
+"""Fabrication figures of a net being edited (``dgpc edit``).
+
+Settled, they are the pipeline's own: the strips ``planarize-strips`` makes with its defaults
+(:func:`~dgpc_cli.stages.planarize_run.planarized`: one template where the net qualifies,
+``--refine auto``), the templates ``unfold`` groups them into with its defaults
+(:func:`~dgpc_cli.stages.unfold.unfold_strips`, congruence within 0.5 mm), their deviation
+from the net and seam steps (``metrics.fabrication``), and the mold ``extract-mold`` finds.
+
+While a handle moves they are a live estimate warm-started from the last strips
+(:func:`live_figures`): every strip whose net strip moved keeps its flat shape (its
+development, the template's for a template) and is bent anew onto the moved net at the same
+places along its geodesics (:func:`~dgpc_cli.strips.template.bend_template`); the templates
+and their quantities are the last ones, the deviation and seam steps those of the bent
+strips. The pipeline's figures replace them when the net settles.
+"""
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
 from dgpc_cli.errors import DgpcError
-from dgpc_cli.io.units import from_mm
+from dgpc_cli.io.net import NetArtifact
+from dgpc_cli.io.units import from_mm, to_mm
 from dgpc_cli.stages.extract_mold import extract_mold
-from dgpc_cli.stages.planarize import planarize_strips
-from dgpc_cli.stages.unfold import unfold_strips
+from dgpc_cli.stages.planarize_run import PlanarizeOptions, planarized
+from dgpc_cli.stages.strip_fabrication import fabrication_metrics, missed_targets
+from dgpc_cli.stages.unfold import CONGRUENCE_TOL_MM, unfold_strips
+from dgpc_cli.strips.develop import develop_strip
+from dgpc_cli.strips.refine import refine_rows
+from dgpc_cli.strips.template import bend_template, closest_on_polylines
+
+#: A strip whose net strip moved by less than this fraction of its width since the last
+#: figures is not bent anew (the drag did not touch it).
+TOUCHED = 1e-9
 
 
-def fabrication_figures(f_mm: np.ndarray, units: str) -> dict:
-    """``{"strips": {...} | {"error": str}, "mold": {...} | {"error": str}}``: the congruence
-    classes of the developed strips (count, quantity per class, their largest deviation as a
-    fraction of the length) and the strips' largest deviation from the net (fraction of the
-    width); the mold (one surface of revolution: its pieces and their lengths in the net's
-    unit) and the largest strain of a panel against it."""
+@dataclass
+class StripsState:
+    """The strips behind the last figures, in mm: ``A, B (S, k, 3)`` on the net ``f`` as
+    refined for them (``refine`` rulings per net row), each strip's development ``(S, k, 2,
+    2)`` (its flat shape), where its vertices sit along its two geodesics (``sA, sB (S, k)``:
+    segment index + fraction), its records (``id``, ``v``, ``cut_edges``) and the figures
+    that do not change while it bends (strips, method, templates and quantities)."""
+
+    f: np.ndarray
+    refine: int
+    A: np.ndarray
+    B: np.ndarray
+    developments: np.ndarray
+    sA: np.ndarray
+    sB: np.ndarray
+    records: list
+    fixed: dict
+
+
+def _geodesics(f: np.ndarray, columns: list[int]) -> tuple[np.ndarray, np.ndarray]:
+    cols = np.asarray(columns)
+    return np.moveaxis(f[:, cols], 1, 0), np.moveaxis(f[:, cols + 1], 1, 0)
+
+
+def _strip_figures(f_mm: np.ndarray, units: str, state: StripsState, A, B) -> dict:
+    """The figures of the strips ``A, B`` (mm) on the net ``f_mm``: the fixed ones of
+    ``state`` and the deviation and seam steps of ``metrics.fabrication``."""
+    geometry = [(from_mm(a, units), from_mm(b, units)) for a, b in zip(A, B, strict=True)]
+    fab = fabrication_metrics(from_mm(f_mm, units), units, state.records, geometry,
+                              refine=state.refine)
+    return {**state.fixed, "deviation": fab.get("max_deviation_relative"),
+            "seam_step": fab.get("max_seam_step_relative"), "missed": missed_targets(fab)}
+
+
+def pipeline_figures(f_mm: np.ndarray, units: str) -> tuple[dict, StripsState | None]:
+    """The strips' figures of ``planarize-strips`` and ``unfold`` with their defaults for the
+    net ``f_mm (m, n, 3)`` (mm; ``units`` its artifact's unit), and the state the live
+    figures start from (None where the strips failed: the figures then hold ``error``)."""
     f_mm = np.asarray(f_mm, dtype=float)
     n = f_mm.shape[1]
-    out: dict = {}
+    columns = list(range(n - 1))
     try:
-        strips = planarize_strips(f_mm, list(range(n - 1)))
-        _, classes, _ = unfold_strips([(s.A, s.B) for s in strips], [s.id for s in strips],
-                                      [s.v for s in strips])
-        out["strips"] = {
-            "strips": len(strips), "classes": len(classes),
-            "quantities": [c["quantity"] for c in classes],
-            "class_deviation": max(c["max_relative_error"] for c in classes),
-            "strip_deviation": max(s.deviation for s in strips)}
+        done = planarized(NetArtifact(f=from_mm(f_mm, units), units=units), columns,
+                          PlanarizeOptions())
+        art = done.art
+        geometry = [(to_mm(A, units), to_mm(B, units)) for A, B in art.geometry]
+        refine = int(art.parameters.get("refine", 1))
+        template = art.template is not None and "rejected" not in art.template
+        _, classes, _ = unfold_strips(
+            geometry, [r["id"] for r in art.records], [r["v"] for r in art.records],
+            congruence_tol=CONGRUENCE_TOL_MM, cut_edges=[r.get("cut_edges")
+                                                         for r in art.records],
+            template=template, refine=refine)
     except DgpcError as err:
-        out["strips"] = {"error": str(err)}
+        return {"error": err.reason}, None
+    fine = refine_rows(f_mm, refine)
+    A = np.stack([g[0] for g in geometry])
+    B = np.stack([g[1] for g in geometry])
+    P, Q = _geodesics(fine, [r["v"] for r in art.records])
+    devs = [develop_strip(a, b) for a, b in zip(A, B, strict=True)]
+    fab = art.metrics["fabrication"]
+    state = StripsState(
+        f=fine, refine=refine, A=A, B=B,
+        developments=np.stack([np.stack([d.A, d.B], axis=1) for d in devs]),
+        sA=closest_on_polylines(A, P)[2], sB=closest_on_polylines(B, Q)[2],
+        records=[{k: r[k] for k in ("id", "v", "cut_edges") if k in r} for r in art.records],
+        fixed={"source": "pipeline", "strips": len(geometry),
+               "method": art.parameters["method"], "refine": refine,
+               "templates": len(classes), "quantities": [c["quantity"] for c in classes]})
+    figures = {**state.fixed, "deviation": fab.get("max_deviation_relative"),
+               "seam_step": fab.get("max_seam_step_relative"), "missed": missed_targets(fab)}
+    return figures, state
+
+
+def _at(polylines: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """Points of ``polylines (S, k, 3)`` at the parameters ``s (S, j)`` (segment + fraction)."""
+    i = np.clip(np.floor(s).astype(int), 0, polylines.shape[1] - 2)
+    t = (s - i)[..., None]
+    a = np.take_along_axis(polylines, i[..., None], 1)
+    b = np.take_along_axis(polylines, i[..., None] + 1, 1)
+    return (1 - t) * a + t * b
+
+
+def live_figures(state: StripsState, f_mm: np.ndarray, units: str) -> tuple[dict, int]:
+    """The figures of the strips of ``state`` carried onto the moved net ``f_mm`` (mm): each
+    strip whose net strip moved (by more than :data:`TOUCHED` of its width) bent anew, its
+    own development onto the points of the moved geodesics where its vertices were
+    (:func:`~dgpc_cli.strips.template.bend_template`); ``state`` then holds the bent strips
+    (the next event starts from them). Returns the figures (``source`` ``live``) and the
+    number of strips bent."""
+    fine = refine_rows(np.asarray(f_mm, dtype=float), state.refine)
+    columns = [r["v"] for r in state.records]
+    P, Q = _geodesics(fine, columns)
+    P0, Q0 = _geodesics(state.f, columns)
+    width = np.linalg.norm(Q0 - P0, axis=-1).mean(axis=1)
+    moved = np.maximum(np.abs(P - P0).max(axis=(1, 2)), np.abs(Q - Q0).max(axis=(1, 2)))
+    touched = np.flatnonzero(moved > TOUCHED * width)
+    if touched.size:
+        A, B = bend_template(state.developments[touched], _at(P[touched], state.sA[touched]),
+                             _at(Q[touched], state.sB[touched]))
+        state.A[touched], state.B[touched] = A, B
+    state.f = fine
+    figures = _strip_figures(np.asarray(f_mm, dtype=float), units, state, state.A, state.B)
+    return {**figures, "source": "live"}, int(touched.size)
+
+
+def mold_figures(f_mm: np.ndarray, units: str) -> dict:
+    """The mold ``extract-mold`` finds for the net (one surface of revolution: its pieces
+    and their lengths in the net's unit, its radii) and the largest strain of a panel
+    against it; ``{"error": …}`` where there is none."""
     try:
-        mold = extract_mold([("net", from_mm(f_mm, units))])
-        figures = mold.metrics()
-        out["mold"] = {"pieces": [{"id": p.id, "rows": [p.start, p.stop], "length": p.length}
-                                  for p in mold.pieces],
-                       "segments": figures["segments"],
-                       "radius": [figures["radius_min"], figures["radius_max"]],
-                       "strain_max": figures["isometry_error_max"]}
+        mold = extract_mold([("net", from_mm(np.asarray(f_mm, dtype=float), units))])
     except DgpcError as err:
-        out["mold"] = {"error": str(err)}
-    return out
+        return {"error": str(err)}
+    figures = mold.metrics()
+    return {"pieces": [{"id": p.id, "rows": [p.start, p.stop], "length": p.length}
+                       for p in mold.pieces],
+            "segments": figures["segments"],
+            "radius": [figures["radius_min"], figures["radius_max"]],
+            "strain_max": figures["isometry_error_max"]}
+
+
+def fabrication_figures(f_mm: np.ndarray, units: str) -> tuple[dict, StripsState | None]:
+    """``({"strips": …, "mold": …}, state)``: the pipeline's figures of the settled net
+    (:func:`pipeline_figures`, :func:`mold_figures`) and the live figures' start."""
+    strips, state = pipeline_figures(f_mm, units)
+    return {"strips": strips, "mold": mold_figures(f_mm, units)}, state

@@ -151,10 +151,10 @@ class LiveSolver:
                     self._cond.wait(REFRESH_IDLE)
                 waiting = bool(self._queue)
             if not waiting:
-                self._answer(Answer(request, s.frame(), time.perf_counter() - request.arrived,
-                                    refresh=True))
+                self._answer(Answer(request, s.frame(fabrication=self.fabrication()),
+                                    time.perf_counter() - request.arrived, refresh=True))
         else:
-            frame = s.frame(fabrication=self.fabrication() and s.settled)
+            frame = s.frame(fabrication=self.fabrication())
             self._answer(Answer(request, frame, time.perf_counter() - request.arrived, error))
         if request.end:
             self.submit(Request("settle"))

@@ -25,6 +25,8 @@ from dgpc_cli.edit.page_input import (
     within_reach,
 )
 from dgpc_cli.edit.viser_logs import route_viser_output
+from dgpc_cli.report.camera import outward_front, standard_views
+from dgpc_cli.report.scene import grid_quads
 
 log = logging.getLogger(__name__)
 
@@ -34,7 +36,7 @@ SURFACE, GEODESICS, FLAGGED, SELECTED = (205, 205, 200), (200, 40, 40), (255, 0,
 
 
 #: The initial camera's distance from the net's centre, in diagonals of its bounding box.
-CAMERA_DISTANCE = 0.9
+CAMERA_DISTANCE = 1.1
 #: Size of a handle's gizmo, in edge lengths of the net.
 GIZMO_SIZE = 3.0
 #: Width of its lines, in pixels (wider lines are easier to grab).
@@ -69,17 +71,17 @@ def geodesic_segments(f: np.ndarray) -> np.ndarray:
 
 
 def initial_camera(f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The initial camera (look-at point, position; up +z): the net's centre seen along its
-    normal at the middle, from ``CAMERA_DISTANCE`` diagonals of its bounding box."""
+    """The initial camera (look-at point, position; up +z): the report's axonometric view of
+    the net (:func:`~dgpc_cli.report.camera.standard_views`, seen from its outside: column 0
+    on the left, as in the report's elevation), from ``CAMERA_DISTANCE`` diagonals of its
+    bounding box."""
     pts = f.reshape(-1, 3)
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     centre = 0.5 * (lo + hi)
-    m, n = f.shape[:2]
-    normal = np.cross(f[-1, n // 2] - f[0, n // 2], f[m // 2, -1] - f[m // 2, 0])
-    normal = normal / (np.linalg.norm(normal) or 1.0)
-    if float(np.dot(normal, centre - pts.mean(axis=0))) < 0:
-        normal = -normal                      # from the side the net bulges towards
-    return centre, centre + CAMERA_DISTANCE * float(np.linalg.norm(hi - lo)) * normal
+    up = (0.0, 0.0, 1.0)
+    axonometric = standard_views(pts, up, outward_front(grid_quads(f), up))[0]
+    toward = axonometric.rotation[2]
+    return centre, centre + CAMERA_DISTANCE * float(np.linalg.norm(hi - lo)) * toward
 
 
 class EditPage:
@@ -104,6 +106,7 @@ class EditPage:
         self.box = (pts0.min(axis=0), pts0.max(axis=0))    # the reach of a handle's target
         self._accepted: dict[tuple[int, int], tuple[float, float, float]] = {}
         self._targets: dict[tuple[int, int], tuple[float, float, float]] = {}
+        self._saved_handles: list | None = None
         self._lock = threading.RLock()
         self._gizmos: dict[tuple[int, int], object] = {}
         self._dragging: set[tuple[int, int]] = set()
@@ -127,7 +130,8 @@ class EditPage:
         # a point within a world unit of the ray, and a click handler above the points would
         # take the press meant for a gizmo's arrow in front of them
         self.lines = self.server.scene.add_line_segments(
-            "/geodesics", geodesic_segments(first.f), colors=GEODESICS, line_width=2.0)
+            "/geodesics", geodesic_segments(first.f), colors=GEODESICS, thickness=2.0,
+            thickness_units="screen")
         self.points = self.server.scene.add_point_cloud(
             "/field", f, colors=field_colours(first.field, max_strain),
             point_size=0.2 * self.scale, point_shape="circle")
@@ -158,7 +162,7 @@ class EditPage:
             save = gui.add_button("Save artifact")
             self.saved = gui.add_markdown("")
         with gui.add_folder("Fabrication"):
-            self.fab_on = gui.add_checkbox("Fabrication figures (when settled)", False)
+            self.fab_on = gui.add_checkbox("Fabrication figures", False)
             self.fabrication = gui.add_markdown("")
 
         release.on_click(guarded("release")(
@@ -303,8 +307,9 @@ class EditPage:
                     self.status.content = status
                 if frame.fabrication is not None:
                     self.fabrication.content = _fabrication_markdown(frame.fabrication)
-                elif not frame.settled and self.fabrication.content:
+                elif not self.fab_on.value and self.fabrication.content:
                     self.fabrication.content = ""
+                self._unsaved(frame)
             if self.selected is not None:
                 self.select(self.selected)
 
@@ -342,8 +347,20 @@ class EditPage:
                 self._new_gizmo(index, target)
 
     def saved_to(self, text: str, saved: bool = False) -> None:
-        """Say what the last save did (``saved``: it wrote the artifact)."""
-        self.saved.content = text
+        """Say what the last save did (``saved``: it wrote the artifact of the handles on
+        screen; the line then changes once they change: :meth:`_unsaved`)."""
+        with self._lock:
+            self.saved.content = text
+            self._saved_handles = sorted(self._targets.items()) if saved else None
+
+    def _unsaved(self, frame) -> None:
+        """After a save, the first frame whose handles differ says the design changed since."""
+        if self._saved_handles is None:
+            return
+        if sorted((u, v, t) for u, v, t in frame.handles) != [
+                (*i, t) for i, t in self._saved_handles]:
+            self.saved.content = "Changed since the last save: **not saved**"
+            self._saved_handles = None
 
     def stop(self) -> None:
         self.server.stop()
@@ -354,8 +371,9 @@ def _url_host(host: str) -> str:
 
 
 def _status_markdown(frame) -> str:
-    mark = "✅" if frame.state == "converged" else ("⏳" if not frame.settled else "⚠️")
-    line = f"{mark} **{frame.state.replace('_', ' ')}**: {frame.message}"
+    """The status line: the state in words (no emoji: a browser without an emoji font shows
+    an empty box), the run's iterations and time where the net on screen is that run's."""
+    line = f"**{frame.state.replace('_', ' ')}**: {frame.message}"
     if frame.iterations:
         line += f"  \n_{frame.iterations} iterations, {1000 * frame.seconds:.0f} ms_"
     return line
@@ -371,22 +389,45 @@ def _field_markdown(frame, limit: float) -> str:
         flags.append(f"creased at {int(frame.creased.sum())} vertices")
     text = f"Colour: {frame.field_name}, largest **{worst:.3g}** ({legend(limit)})"
     if flags:
-        text += "  \n⚠️ " + "; ".join(flags) + " (magenta)"
+        text += "  \n**Flagged**: " + "; ".join(flags) + " (magenta)"
     return text
 
 
-def _fabrication_markdown(fab: dict) -> str:
-    lines = []
-    strips = fab.get("strips", {})
+def _percent(value) -> str:
+    return "n/a" if value is None or value != value else f"{100 * value:.2f} %"
+
+
+def _strips_markdown(strips: dict | None) -> str:
+    """The strips' figures (:mod:`dgpc_cli.edit.fabrication`), saying where they come from."""
+    if strips is None:
+        return ("**Strips**: the figures of planarize-strips and unfold follow when the net "
+                "settles")
     if "error" in strips:
-        lines.append(f"**Strips**: {strips['error']}")
+        return f"**Strips**: {strips['error']}"
+    k = strips["templates"]
+    quantities = strips["quantities"]
+    templates = (f"one template ({quantities[0]} copies)" if k == 1 else
+                 f"{k} templates ({' + '.join(map(str, quantities))})")
+    how = ("bent from one template" if strips["method"] == "template"
+           else "each on its own (no shared template)")
+    refine = f", {strips['refine']} rulings per net row" if strips["refine"] > 1 else ""
+    if strips["source"] == "live":
+        source = ("_live estimate while the net moves: the last strips bent onto it; "
+                  "planarize-strips and unfold give theirs when it settles_")
     else:
-        lines.append(f"**Strips**: {strips['strips']} strips in {strips['classes']} congruence "
-                     f"classes ({', '.join(map(str, strips['quantities']))}); class deviation "
-                     f"{strips['class_deviation']:.2g} of the length, strip deviation "
-                     f"{strips['strip_deviation']:.2g} of the width")
-    mold = fab.get("mold", {})
-    if "error" in mold:
+        source = "_as planarize-strips and unfold make them (their defaults)_"
+    missed = f"; **misses** {', '.join(strips['missed'])}" if strips["missed"] else ""
+    return (f"**Strips**: {strips['strips']} strips, {how}{refine}: **{templates}**; "
+            f"deviation from the net {_percent(strips['deviation'])} of the width, seam step "
+            f"{_percent(strips['seam_step'])} (targets 1.5 %, 1 %){missed}  \n{source}")
+
+
+def _fabrication_markdown(fab: dict) -> str:
+    lines = [_strips_markdown(fab.get("strips"))]
+    mold = fab.get("mold")
+    if mold is None:
+        lines.append("**Mold**: when the net settles")
+    elif "error" in mold:
         lines.append(f"**Mold**: {mold['error']}")
     else:
         pieces = ", ".join(f"{p['id']} ({p['length']:.3g})" for p in mold["pieces"]) or "none"

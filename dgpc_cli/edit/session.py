@@ -120,6 +120,8 @@ class EditSession:
         self._factorizations = 0
         self._seconds = 0.0
         self._shown: Frame | None = None
+        self._strips = None             # the strips the live fabrication figures bend
+        self._fab_of: tuple | None = None       # (net, figures) of the last settled figures
 
     # -- what is shown -------------------------------------------------------------------
     @property
@@ -160,7 +162,8 @@ class EditSession:
         """The net on screen, coloured by strain against the input (isometric) or by the panel
         error against its own surface of revolution (revolution), pleats and creases flagged,
         with the status ``optimize`` would report: its own when settled, else the figures of
-        the net as it stands."""
+        the net as it stands; with ``fabrication``, the fabrication figures
+        (:meth:`fabrication`: the pipeline's when settled, else the live estimate)."""
         f_mm, f_in = self.f_mm, self.prepared.net.f_mm
         m, n = self.shape
         if self.mode == "isometric":
@@ -189,7 +192,7 @@ class EditSession:
                      else f"dragging ({state.replace('_', ' ')})",
                      message=message, settled=self.settled, iterations=self._iterations,
                      seconds=self._seconds, factorizations=self._factorizations,
-                     fabrication=self.fabrication() if fabrication and self.settled else None)
+                     fabrication=self.fabrication() if fabrication else None)
         return self._shown
 
     def _judged(self) -> tuple[str, str]:
@@ -219,7 +222,7 @@ class EditSession:
             return
         self._remember()
         self.handles[vid] = self.position(u, v)
-        self.outcome = None
+        self._changed()
 
     def release(self, u: int, v: int) -> None:
         """Let the handle at ``(u, v)`` go (a no-op for a vertex that is no handle)."""
@@ -228,7 +231,14 @@ class EditSession:
             return
         self._remember()
         del self.handles[vid]
+        self._changed()
+
+    def _changed(self) -> None:
+        """The handles changed without a run: the net is not settled, and the figures of
+        the last run (iterations, time) are not its own."""
         self.outcome = None
+        self._iterations = self._factorizations = 0
+        self._seconds = 0.0
 
     def drag(self, u: int, v: int, target) -> None:
         """Move the handle ``(u, v)`` (made one if it is not) to ``target`` (net units) and run
@@ -315,6 +325,9 @@ class EditSession:
     def _restore(self, snap: _Snapshot) -> None:
         self.handles, self.f_mm, self.outcome = dict(snap.handles), snap.f_mm, snap.outcome
         self._live = None
+        # the figures of the last run are not the restored net's
+        self._iterations = self._factorizations = 0
+        self._seconds = 0.0
 
     def undo(self) -> bool:
         if not self._undo:
@@ -357,10 +370,23 @@ class EditSession:
 
     # -- fabrication ---------------------------------------------------------------------
     def fabrication(self) -> dict:
-        """The fabrication figures of the net on screen (see :func:`fabrication_figures`)."""
-        from dgpc_cli.edit.fabrication import fabrication_figures
+        """The fabrication figures of the net on screen: settled, the pipeline's own
+        (:func:`~dgpc_cli.edit.fabrication.fabrication_figures`, kept while the net stays);
+        else the live estimate bent from the last strips
+        (:func:`~dgpc_cli.edit.fabrication.live_figures`; ``{"strips": None}`` before any)."""
+        from dgpc_cli.edit.fabrication import fabrication_figures, live_figures
 
-        return fabrication_figures(self.f_mm, self.prepared.net.units)
+        units = self.prepared.net.units
+        if self.settled:
+            cached = self._fab_of
+            if cached is None or not np.array_equal(cached[0], self.f_mm):
+                figures, self._strips = fabrication_figures(self.f_mm, units)
+                self._fab_of = (self.f_mm.copy(), figures)
+            return self._fab_of[1]
+        if self._strips is None:
+            return {"strips": None, "mold": None}
+        figures, _ = live_figures(self._strips, self.f_mm, units)
+        return {"strips": figures, "mold": None}
 
 
 def handles_file(output: Path) -> Path:

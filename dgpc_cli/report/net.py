@@ -264,8 +264,11 @@ def strain_figure(f: np.ndarray, f0: np.ndarray, *, title: str, unit: str,
         layers.append(handle_marks(now, size))
         start += [Segments(np.stack([then, now], axis=1), HANDLE, "handle-moves",
                            linewidth=1.5), handle_marks(now, size)]
+        moved = float(np.linalg.norm(now - then, axis=1).max())
         legend.append(Line2D([], [], color=HANDLE, lw=2.2,
-                             label=f"handles ({len(ids_h)}): start → target"))
+                             label=f"handles ({len(ids_h)}): a cross where each is; on the "
+                                   "start shape a line from where it started (moves up to "
+                                   f"{moved:.3g} {unit})"))
     points = np.concatenate([f.reshape(-1, 3), np.asarray(f0, float).reshape(-1, 3)])
     return views_figure(layers, title=title, unit=unit, up=up, front=front,
                         colour_bar=ColourBar(norm, cmap, "strain |λ1| + |λ2| (dimensionless)"),

@@ -3,10 +3,12 @@ own), trim them, build and write the strips artifact, warn and report what faile
 
 from __future__ import annotations
 
+import contextlib
 import logging
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from types import SimpleNamespace
 
 from dgpc_cli.errors import DgpcError, NotConverged
 from dgpc_cli.fitting.soundness import require_sound_net
@@ -105,10 +107,10 @@ class _Fitted:
     notes: list[str]          # what the trim dropped
 
 
-def _artifact(net, json_path: Path, out_json: Path, columns, outline, opts: PlanarizeOptions,
-              refine: int, fit) -> _Fitted:
+def _artifact(net, inputs: dict, columns, outline, opts: PlanarizeOptions, refine: int,
+              fit) -> _Fitted:
     """The strips artifact of the fit ``(strips, template, fallback)`` (trimmed to
-    ``outline`` where given)."""
+    ``outline`` where given), its ``inputs`` record ``inputs``."""
     strips, template, fallback = fit
     m, n = net.shape
     records = [s.record() for s in strips]
@@ -132,7 +134,7 @@ def _artifact(net, json_path: Path, out_json: Path, columns, outline, opts: Plan
                     **({"refine": refine} if refine > 1 else {}),
                     **({"template_rejected": fallback} if fallback else {})},
         template=template,
-        inputs={"net": file_input(json_path, out_json.resolve().parent)},
+        inputs=inputs,
         metrics={**strips_metrics(records, net.units),
                  "fabrication": fabrication_metrics(net.f, net.units, records,
                                                     [(s.A, s.B) for s in strips], outline,
@@ -185,6 +187,30 @@ def _auto_refine(first: _Fitted, fit_again) -> _Fitted:
     return keep
 
 
+@contextlib.contextmanager
+def _no_progress(length: int, label: str):
+    """A progress bar that shows nothing."""
+    yield SimpleNamespace(update=lambda n: None)
+
+
+def planarized(net, columns: list[int], opts: PlanarizeOptions, *, outline=None,
+               inputs: dict | None = None, progressbar: Callable = _no_progress) -> _Fitted:
+    """The strips ``planarize-strips`` makes of the strips ``columns`` of the net ``net`` (a
+    :class:`~dgpc_cli.io.net.NetArtifact`, read or in memory) with ``opts``, in memory: one
+    template where the net qualifies, else each strip on its own; ``--refine auto``
+    (``opts.refine`` None) as :func:`_auto_refine`; trimmed to ``outline`` where given. The
+    artifact records ``inputs``. Nothing is written or said but the log."""
+    reason = "--per-strip" if opts.per_strip else template_qualifies(net.f_mm, columns)
+
+    def run(refine: int) -> _Fitted:
+        return _artifact(net, inputs or {}, columns, outline, opts, refine,
+                         _fit(net, columns, opts, refine, reason, progressbar))
+
+    if opts.refine is None:
+        return _auto_refine(run(1), lambda: run(2))
+    return run(opts.refine)
+
+
 def run_planarize_strips(stem: Path, output: Path, opts: PlanarizeOptions, *, force: bool,
                          fmt, progressbar: Callable, written: Callable[[Path], None]) -> None:
     """Planarize the strips of the net ``stem`` into the strips artifact ``output``.
@@ -200,17 +226,9 @@ def run_planarize_strips(stem: Path, output: Path, opts: PlanarizeOptions, *, fo
     require_sound_net(net.f, json_path, gpc=False)
     columns = parse_strip_range(opts.strip_range, net.shape[1])
     outline = _outline(net, json_path) if opts.trim else None
-    reason = "--per-strip" if opts.per_strip else template_qualifies(net.f_mm, columns)
     out_json, _ = artifact_paths(output)
-
-    def run(refine: int) -> _Fitted:
-        return _artifact(net, json_path, out_json, columns, outline, opts, refine,
-                         _fit(net, columns, opts, refine, reason, progressbar))
-
-    if opts.refine is None:
-        done = _auto_refine(run(1), lambda: run(2))
-    else:
-        done = run(opts.refine)
+    done = planarized(net, columns, opts, outline=outline, progressbar=progressbar,
+                      inputs={"net": file_input(json_path, out_json.resolve().parent)})
     art = done.art
     failed, crossed = art.status["polish_not_converged"], art.status["rulings_cross"]
     for note in done.notes:
