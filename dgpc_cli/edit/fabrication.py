@@ -25,9 +25,11 @@ from dgpc_cli.io.net import NetArtifact
 from dgpc_cli.io.units import from_mm, to_mm
 from dgpc_cli.stages.extract_mold import extract_mold
 from dgpc_cli.stages.planarize_run import PlanarizeOptions, planarized
-from dgpc_cli.stages.strip_fabrication import fabrication_metrics, missed_targets
+from dgpc_cli.stages.strip_fabrication import missed_targets
 from dgpc_cli.stages.unfold import CONGRUENCE_TOL_MM, unfold_strips
 from dgpc_cli.strips.develop import develop_strip
+from dgpc_cli.strips.fabrication import net_normals, seam_pair
+from dgpc_cli.strips.quality import quad_deviation
 from dgpc_cli.strips.refine import refine_rows
 from dgpc_cli.strips.template import bend_template, closest_on_polylines
 
@@ -53,6 +55,11 @@ class StripsState:
     sB: np.ndarray
     records: list
     fixed: dict
+    #: Per strip its largest deviation from its net strip, per seam (strip s, s+1) its
+    #: largest step, in mm; the strips' widths (mean v-edge, mm).
+    deviation: np.ndarray | None = None
+    seam_step: np.ndarray | None = None
+    widths: np.ndarray | None = None
 
 
 def _geodesics(f: np.ndarray, columns: list[int]) -> tuple[np.ndarray, np.ndarray]:
@@ -60,14 +67,31 @@ def _geodesics(f: np.ndarray, columns: list[int]) -> tuple[np.ndarray, np.ndarra
     return np.moveaxis(f[:, cols], 1, 0), np.moveaxis(f[:, cols + 1], 1, 0)
 
 
-def _strip_figures(f_mm: np.ndarray, units: str, state: StripsState, A, B) -> dict:
-    """The figures of the strips ``A, B`` (mm) on the net ``f_mm``: the fixed ones of
-    ``state`` and the deviation and seam steps of ``metrics.fabrication``."""
-    geometry = [(from_mm(a, units), from_mm(b, units)) for a, b in zip(A, B, strict=True)]
-    fab = fabrication_metrics(from_mm(f_mm, units), units, state.records, geometry,
-                              refine=state.refine)
-    return {**state.fixed, "deviation": fab.get("max_deviation_relative"),
-            "seam_step": fab.get("max_seam_step_relative"), "missed": missed_targets(fab)}
+def _measure(state: StripsState, touched: np.ndarray) -> dict:
+    """The deviation and seam step of the strips of ``state`` on its net ``state.f``,
+    measured anew for the strips ``touched`` and the seams beside them (the others kept), by
+    the measures ``metrics.fabrication`` takes (:mod:`dgpc_cli.strips.fabrication`): the
+    largest of each over the mean strip width."""
+    columns = [r["v"] for r in state.records]
+    P, Q = _geodesics(state.f, columns)
+    S = len(columns)
+    if state.deviation is None:
+        state.deviation, state.seam_step = np.zeros(S), np.zeros(max(S - 1, 0))
+    state.widths = np.linalg.norm(Q - P, axis=-1).mean(axis=1)
+    for i in touched:
+        state.deviation[i] = float(np.max(quad_deviation(state.A[i], state.B[i], P[i], Q[i])))
+    seams = sorted({j for i in touched for j in (i - 1, i) if 0 <= j < S - 1
+                    and columns[j + 1] == columns[j] + 1})
+    normals = net_normals(state.f) if seams else None
+    for j in seams:
+        one, other = seam_pair(state.f, columns[j], state.B[j], state.A[j + 1], normals)
+        state.seam_step[j] = max(float(one[0].max()), float(other[0].max()))
+    width = float(state.widths.mean())
+    deviation = float(state.deviation.max()) / width
+    seam = float(state.seam_step.max()) / width if state.seam_step.size else None
+    fab = {"max_deviation_relative": deviation, "max_seam_step_relative": seam}
+    return {**state.fixed, "deviation": deviation, "seam_step": seam,
+            "missed": missed_targets(fab)}
 
 
 def pipeline_figures(f_mm: np.ndarray, units: str) -> tuple[dict, StripsState | None]:
@@ -119,7 +143,7 @@ def _at(polylines: np.ndarray, s: np.ndarray) -> np.ndarray:
     return (1 - t) * a + t * b
 
 
-def live_figures(state: StripsState, f_mm: np.ndarray, units: str) -> tuple[dict, int]:
+def live_figures(state: StripsState, f_mm: np.ndarray) -> tuple[dict, int]:
     """The figures of the strips of ``state`` carried onto the moved net ``f_mm`` (mm): each
     strip whose net strip moved (by more than :data:`TOUCHED` of its width) bent anew, its
     own development onto the points of the moved geodesics where its vertices were
@@ -138,8 +162,10 @@ def live_figures(state: StripsState, f_mm: np.ndarray, units: str) -> tuple[dict
                              _at(Q[touched], state.sB[touched]))
         state.A[touched], state.B[touched] = A, B
     state.f = fine
-    figures = _strip_figures(np.asarray(f_mm, dtype=float), units, state, state.A, state.B)
-    return {**figures, "source": "live"}, int(touched.size)
+    bent = int(touched.size)
+    if state.deviation is None:              # the first event measures every strip
+        touched = np.arange(len(columns))
+    return {**_measure(state, touched), "source": "live"}, bent
 
 
 def mold_figures(f_mm: np.ndarray, units: str) -> dict:

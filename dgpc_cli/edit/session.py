@@ -385,7 +385,7 @@ class EditSession:
             return self._fab_of[1]
         if self._strips is None:
             return {"strips": None, "mold": None}
-        figures, _ = live_figures(self._strips, self.f_mm, units)
+        figures, _ = live_figures(self._strips, self.f_mm)
         return {"strips": figures, "mold": None}
 
 
