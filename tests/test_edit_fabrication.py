@@ -154,3 +154,39 @@ def test_the_saved_line_changes_once_the_handles_change_after_a_save(wall):
         assert "not saved" in page.saved.content
     finally:
         page.stop()
+
+
+def test_the_pipelines_figures_come_from_a_worker_while_the_solver_goes_on(wall):
+    """As the page runs it: the settled net's figures are asked of the fabrication worker;
+    the solver answers at once with the figures pending, then with the pipeline's."""
+    import threading
+
+    from dgpc_cli.edit.fabrication import fabrication_figures
+    from dgpc_cli.edit.fabrication_worker import FabricationWorker
+    from dgpc_cli.edit.live import LiveSolver, Request
+
+    s = _pushed_session(wall)
+    answers, done = [], threading.Event()
+
+    def on_frame(answer):
+        answers.append(answer)
+        fab = answer.frame.fabrication if answer.frame is not None else None
+        if fab and (fab.get("strips") or {}).get("source") == "pipeline":
+            done.set()
+
+    solver = LiveSolver(s, on_frame, fabrication=lambda: True)
+    worker = FabricationWorker(lambda f: fabrication_figures(f, "m"), lambda f, r: solver.submit(
+        Request("call", (lambda x: x.fabricated(f, r),))))
+    s.fabricate = worker.ask
+    try:
+        solver.submit(Request("call", (lambda x: None,)))
+        assert done.wait(600)
+    finally:
+        worker.close()
+        solver.close()
+    first = answers[0].frame.fabrication
+    assert first["pending"] and first["strips"] is None
+    assert "at work on the settled net" in _fabrication_markdown(first)
+    last = answers[-1].frame.fabrication
+    assert "pending" not in last and last["strips"]["source"] == "pipeline"
+    assert last["strips"] == pipeline_figures(s.f_mm, "m")[0]

@@ -423,7 +423,10 @@ def _strips_markdown(strips: dict | None) -> str:
 
 
 def _fabrication_markdown(fab: dict) -> str:
-    lines = [_strips_markdown(fab.get("strips"))]
+    pending = fab.get("pending")
+    lines = [] if pending and fab.get("strips") is None else [_strips_markdown(fab.get("strips"))]
+    if pending:
+        lines.append("**Strips**: planarize-strips and unfold are at work on the settled net")
     mold = fab.get("mold")
     if mold is None:
         lines.append("**Mold**: when the net settles")

@@ -8,6 +8,8 @@ import threading
 from collections.abc import Callable
 from pathlib import Path
 
+from dgpc_cli.edit.fabrication import fabrication_figures
+from dgpc_cli.edit.fabrication_worker import FabricationWorker
 from dgpc_cli.edit.listen import check_bound, listening_port
 from dgpc_cli.edit.live import LiveSolver, Request
 from dgpc_cli.edit.replay import replay, write_log
@@ -84,6 +86,14 @@ def serve(session: EditSession, host: str, port: int, output: Path, limit: float
 
     solver = LiveSolver(session, on_frame, fabrication=fabrication.is_set)
 
+    def fabricated(f_mm, result):
+        """The pipeline's figures came: a frame with them, from the solver thread."""
+        solver.submit(Request("call", (lambda s: s.fabricated(f_mm, result),)))
+
+    worker = FabricationWorker(
+        lambda f_mm: fabrication_figures(f_mm, session.prepared.net.units), fabricated)
+    session.fabricate = worker.ask
+
     def save(s: EditSession):
         outcome = s.save(output)
         out_json, _ = artifact_paths(output)
@@ -122,6 +132,7 @@ def serve(session: EditSession, host: str, port: int, output: Path, limit: float
     try:
         check_bound(host, port, page.server.get_port())
     except Exception:
+        worker.close()
         solver.close()
         page.stop()
         raise
@@ -135,5 +146,6 @@ def serve(session: EditSession, host: str, port: int, output: Path, limit: float
     except KeyboardInterrupt:
         log.info("stopped")
     finally:
+        worker.close()
         solver.close()
         page.stop()

@@ -109,6 +109,8 @@ class EditSession:
     prepared: PreparedNet
     handles: dict[int, tuple[float, float, float]] = field(default_factory=dict)
     live_iter: int = LIVE_ITER
+    #: Where the pipeline's figures of a settled net are asked for (None: worked out at once).
+    fabricate: object = None
 
     def __post_init__(self):
         self.f_mm = np.array(self.prepared.net.f_mm, dtype=float)
@@ -373,20 +375,33 @@ class EditSession:
         """The fabrication figures of the net on screen: settled, the pipeline's own
         (:func:`~dgpc_cli.edit.fabrication.fabrication_figures`, kept while the net stays);
         else the live estimate bent from the last strips
-        (:func:`~dgpc_cli.edit.fabrication.live_figures`; ``{"strips": None}`` before any)."""
+        (:func:`~dgpc_cli.edit.fabrication.live_figures`; ``{"strips": None}`` before any).
+        With a ``fabricate`` callback (the page's :class:`~dgpc_cli.edit.fabrication_worker.
+        FabricationWorker`), the pipeline's figures of a settled net are asked of it and
+        the live estimate is shown, ``pending``, until :meth:`fabricated` brings them."""
         from dgpc_cli.edit.fabrication import fabrication_figures, live_figures
 
-        units = self.prepared.net.units
         if self.settled:
             cached = self._fab_of
-            if cached is None or not np.array_equal(cached[0], self.f_mm):
-                figures, self._strips = fabrication_figures(self.f_mm, units)
-                self._fab_of = (self.f_mm.copy(), figures)
-            return self._fab_of[1]
-        if self._strips is None:
-            return {"strips": None, "mold": None}
-        figures, _ = live_figures(self._strips, self.f_mm)
-        return {"strips": figures, "mold": None}
+            if cached is not None and np.array_equal(cached[0], self.f_mm):
+                return cached[1]
+            if self.fabricate is None:
+                self.fabricated(self.f_mm, fabrication_figures(self.f_mm,
+                                                               self.prepared.net.units))
+                return self._fab_of[1]
+            self.fabricate(self.f_mm.copy())
+        strips = self._strips
+        live = None if strips is None else live_figures(strips, self.f_mm)[0]
+        return {"strips": live, "mold": None, **({"pending": True} if self.settled else {})}
+
+    def fabricated(self, f_mm: np.ndarray, result: tuple) -> bool:
+        """Keep the pipeline's figures ``result`` (figures, strips) of the net ``f_mm``
+        where it is still the net on screen; whether it is."""
+        if not np.array_equal(f_mm, self.f_mm):
+            return False
+        figures, self._strips = result
+        self._fab_of = (np.array(f_mm, dtype=float), figures)
+        return True
 
 
 def handles_file(output: Path) -> Path:
