@@ -17,7 +17,7 @@ from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import read_net
 from dgpc_cli.layout import choice as init_choice
 from dgpc_cli.metrics.degenerate import degeneracies
-from dgpc_cli.stages.planarize import trim_records
+from dgpc_cli.strips.planarize import trim_records
 
 
 @pytest.fixture(scope="module")

@@ -23,7 +23,7 @@ import numpy as np
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.net import NetArtifact
 from dgpc_cli.io.units import from_mm, to_mm
-from dgpc_cli.stages.extract_mold import extract_mold
+from dgpc_cli.mold.extract import extract_mold
 from dgpc_cli.stages.planarize_run import PlanarizeOptions, planarized
 from dgpc_cli.stages.strip_fabrication import missed_targets
 from dgpc_cli.stages.unfold import CONGRUENCE_TOL_MM, unfold_strips

@@ -18,7 +18,7 @@ from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.units import same_units
 from dgpc_cli.mold.dxf import profile_dxf
-from dgpc_cli.stages.extract_mold import (
+from dgpc_cli.mold.extract import (
     DEFAULT_FLAT_TOL,
     DEFAULT_MAX_STRAIN,
     DEFAULT_PANEL_SIZE,
