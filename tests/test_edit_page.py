@@ -69,7 +69,7 @@ def pixels(png: bytes) -> np.ndarray:
 
 def net_pixels(im: np.ndarray) -> tuple[int, int]:
     """Pixels of the net's grey surface and of its red geodesics, left of the panel."""
-    net = im[:, : int(0.55 * WIDTH)]
+    net = im[:, : int(0.55 * im.shape[1])]
     grey = (abs(net[..., 0] - net[..., 1]) < 12) & (net[..., 0] < 200) & (net[..., 0] > 60)
     red = (net[..., 0] > 150) & (net[..., 1] < 90) & (net[..., 2] < 90)
     return int(grey.sum()), int(red.sum())
@@ -213,18 +213,20 @@ def test_the_page_shows_the_pipelines_template_count_and_column_0_on_the_left(wa
     expected = (f"one template ({quantities[0]} copies)" if len(classes) == 1 else
                 f"{len(classes)} templates ({' + '.join(map(str, quantities))})")
     proc, url = serve(wall)
+    width, height = 1400, 860                    # the whole panel in the window
     try:
-        with Browser() as browser:
+        with Browser(width=width, height=height) as browser:
             browser.open(url)
             browser.wait_text("converged", 300)
-            # the panel may reach below the window: click the checkbox where it is
-            browser.call("Runtime.evaluate", expression=(
-                "[...document.querySelectorAll('input[type=checkbox]')]"
-                ".find(x => x.getBoundingClientRect().width > 0).click()"))
-            text = browser.wait_text("as planarize-strips and unfold make them", 900)
+            box = browser.call("Runtime.evaluate", returnByValue=True, expression=(
+                "(() => { const r = [...document.querySelectorAll('input[type=checkbox]')]"
+                ".map(x => x.getBoundingClientRect()).find(r => r.width > 0); "
+                "return [r.left + r.width / 2, r.top + r.height / 2]; })()"))
+            browser.click(*box["result"]["value"])
+            text = browser.wait_text("as planarize-strips and unfold make them", 1200)
             assert expected in _figures_line(text), (expected, _figures_line(text))
             im = drawn(browser, tmp_path / "page.png")
-            net = im[:, : int(0.55 * WIDTH)]
+            net = im[:, : int(0.7 * width)]                          # left of the panel
             ys, xs = np.nonzero((abs(net[..., 0] - net[..., 1]) < 12) & (net[..., 0] < 200)
                                 & (net[..., 0] > 60))
             band = np.abs(ys - 0.5 * (ys.min() + ys.max())) < 15       # halfway up
