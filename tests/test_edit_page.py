@@ -218,11 +218,7 @@ def test_the_page_shows_the_pipelines_template_count_and_column_0_on_the_left(wa
         with Browser(width=width, height=height) as browser:
             browser.open(url)
             browser.wait_text("converged", 300)
-            box = browser.call("Runtime.evaluate", returnByValue=True, expression=(
-                "(() => { const r = [...document.querySelectorAll('input[type=checkbox]')]"
-                ".map(x => x.getBoundingClientRect()).find(r => r.width > 0); "
-                "return [r.left + r.width / 2, r.top + r.height / 2]; })()"))
-            browser.click(*box["result"]["value"])
+            browser.check()                          # Fabrication figures
             text = browser.wait_text("as planarize-strips and unfold make them", 1200)
             assert expected in _figures_line(text), (expected, _figures_line(text))
             im = drawn(browser, tmp_path / "page.png")
