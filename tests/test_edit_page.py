@@ -83,7 +83,7 @@ def drawn(browser, path: Path, timeout: float = 180) -> np.ndarray:
     while True:
         im = pixels(browser.screenshot(path))
         grey, red = net_pixels(im)
-        if grey > 20000 and red > 200:
+        if grey > 8000 and red > 200:
             return im
         assert time.monotonic() < end, f"the net is not drawn: {grey} grey, {red} red pixels"
         k += 1

@@ -146,7 +146,7 @@ def _at(polylines: np.ndarray, s: np.ndarray) -> np.ndarray:
 def live_figures(state: StripsState, f_mm: np.ndarray) -> tuple[dict, int]:
     """The figures of the strips of ``state`` carried onto the moved net ``f_mm`` (mm): each
     strip whose net strip moved (by more than :data:`TOUCHED` of its width) bent anew, its
-    own development onto the points of the moved geodesics where its vertices were
+    own development onto its vertices each moved as its foot on its geodesic moved
     (:func:`~dgpc_cli.strips.template.bend_template`); ``state`` then holds the bent strips
     (the next event starts from them). Returns the figures (``source`` ``live``) and the
     number of strips bent."""
@@ -158,8 +158,12 @@ def live_figures(state: StripsState, f_mm: np.ndarray) -> tuple[dict, int]:
     moved = np.maximum(np.abs(P - P0).max(axis=(1, 2)), np.abs(Q - Q0).max(axis=(1, 2)))
     touched = np.flatnonzero(moved > TOUCHED * width)
     if touched.size:
-        A, B = bend_template(state.developments[touched], _at(P[touched], state.sA[touched]),
-                             _at(Q[touched], state.sB[touched]))
+        # each vertex moved as the foot of it on its geodesic moved (a strip's vertices lie
+        # off the geodesic by its deviation: kept), then the strip's own flat shape bent there
+        t, sA, sB = touched, state.sA[touched], state.sB[touched]
+        A, B = bend_template(state.developments[t],
+                             state.A[t] + _at(P[t], sA) - _at(P0[t], sA),
+                             state.B[t] + _at(Q[t], sB) - _at(Q0[t], sB))
         state.A[touched], state.B[touched] = A, B
     state.f = fine
     bent = int(touched.size)
