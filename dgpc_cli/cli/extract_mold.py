@@ -19,7 +19,6 @@ from dgpc_cli.cli.options import (
     show_progress,
     units_check_opt,
 )
-from dgpc_cli.errors import OptionSlip
 from dgpc_cli.io.mold import mold_paths
 from dgpc_cli.stages.extract_mold import (
     DEFAULT_FLAT_TOL,
@@ -68,7 +67,8 @@ class LambdaParam(click.ParamType):
 @click.option("--mold-max-length", type=LengthParam(min=0, min_open=True), default=None,
               metavar="LENGTH",
               help=length_help("Longest mold piece along the meridian, > 0 [default: no "
-                               "limit]."))
+                               "limit].", plausible="up to the whole mold's length along its "
+                                                    "meridian"))
 @click.option("--revolution-tol", "tol", type=FiniteFloat(min=0, min_open=True), default=None,
               callback=from_old_name("--revolution-tol"),
               help="Relative tolerance (a ratio, no unit) of equation (5) and of the "
@@ -106,9 +106,6 @@ def extract_mold_cmd(ctx, nets, segments, lam, panel_size, flat_tol, mold_max_le
         if show_progress(ctx):
             click.echo(line, err=True)
 
-    try:
-        run_extract_mold(nets, output, opts, force=force, fmt=fmt,
-                         check_units=lambda unit, source: check_units(units_check, unit, source),
-                         chosen=chosen, written=lambda json_path: click.echo(str(json_path)))
-    except OptionSlip as slip:
-        raise click.UsageError(str(slip)) from None
+    run_extract_mold(nets, output, opts, force=force, fmt=fmt,
+                     check_units=lambda unit, source: check_units(units_check, unit, source),
+                     chosen=chosen, written=lambda json_path: click.echo(str(json_path)))

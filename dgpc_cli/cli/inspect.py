@@ -31,7 +31,8 @@ def _axis(ctx, param, value):
 @click.option("--coverage-tol", type=LengthParam(min=0, min_open=True), default=None,
               help=length_help("Net: a point of the reference counts as covered when the net "
                                "passes within this distance of it [default: 0.2 % of the "
-                               "reference's bounding-box diagonal]."))
+                               "reference's bounding-box diagonal].",
+                               plausible="up to 10 % of the reference's diagonal"))
 def inspect(stem, axis, against, coverage_tol):
     """Print the metrics of the artifact STEM (SPEC §7) as JSON on stdout.
 

@@ -9,7 +9,6 @@ import click
 from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt
 from dgpc_cli.cli.output_path import OutputPath
-from dgpc_cli.errors import OptionSlip
 from dgpc_cli.io.artifact import artifact_paths
 from dgpc_cli.stages.laths import GAP
 from dgpc_cli.stages.laths_run import run_laths
@@ -20,7 +19,8 @@ from dgpc_cli.stages.laths_run import run_laths
 @click.argument("net_b", type=click.Path(path_type=Path))
 @click.option("--gap", type=LengthParam(min=0, min_open=True), metavar="LENGTH",
               help=length_help(f"Largest distance between two laths at a crossing, > 0 "
-                               f"[default: {GAP} × the mean edge length of the nets]."))
+                               f"[default: {GAP} × the mean edge length of the nets].",
+                               plausible="up to the nets' mean edge"))
 @click.option("-o", "--output", "output", required=True,
               type=OutputPath(),
               help="Output stem: writes STEM.json, STEM.obj (laths as polylines) and STEM.csv "
@@ -39,8 +39,5 @@ def laths(net_a, net_b, gap, output, force, fmt):
     """
     json_path, _ = artifact_paths(output)
     check_writable(output, force, json_path.with_suffix(".csv"))
-    try:
-        run_laths(net_a, net_b, output, gap, force=force, fmt=fmt,
-                  written=lambda out_json: click.echo(str(out_json)))
-    except OptionSlip as slip:
-        raise click.UsageError(str(slip)) from None
+    run_laths(net_a, net_b, output, gap, force=force, fmt=fmt,
+              written=lambda out_json: click.echo(str(out_json)))

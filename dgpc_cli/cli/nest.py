@@ -18,7 +18,7 @@ from dgpc_cli.cli.options import (
     progressbar,
     units_check_opt,
 )
-from dgpc_cli.nesting.tools import TOOLS, resolve_tool
+from dgpc_cli.nesting.tools import BIT_SPAN, KERF_SPAN, MARGIN_SPAN, TOOLS, resolve_tool
 from dgpc_cli.stages.nest import ENGINES, parse_rotations, parse_sheet
 from dgpc_cli.stages.nest_run import NestOptions, run_nest
 
@@ -46,17 +46,18 @@ def _parsed(parser):
                    "spacing 3 mm, margin 10 mm), router (bit 6 mm, spacing 8 mm, margin "
                    "20 mm), waterjet (kerf 1 mm, spacing 2 mm, margin 25 mm). [default: "
                    "laser; router with --tool-diameter]")
-@click.option("--kerf", type=LengthParam(plain="mm", min=0, min_open=True), default=None,
+@click.option("--kerf", type=LengthParam(plain="mm", min=0, min_open=True, span=KERF_SPAN),
+              default=None,
               help=length_help("Cut width of a laser or water jet, > 0 (default 0.2 mm laser, "
                                "1 mm waterjet); the default spacing is the kerf plus the "
-                               "tool's clearance.", plain="mm"))
+                               "tool's clearance.", plain="mm", plausible=KERF_SPAN))
 @click.option("--tool-diameter", "tool_diameter",
-              type=LengthParam(plain="mm", min=0, min_open=True), default=None,
+              type=LengthParam(plain="mm", min=0, min_open=True, span=BIT_SPAN), default=None,
               help=length_help("Router bit diameter, > 0 (default 6 mm); the default spacing "
-                               "is the diameter plus 2 mm.", plain="mm"))
-@click.option("--margin", type=LengthParam(plain="mm", min=0), default=None,
+                               "is the diameter plus 2 mm.", plain="mm", plausible=BIT_SPAN))
+@click.option("--margin", type=LengthParam(plain="mm", min=0, span=MARGIN_SPAN), default=None,
               help=length_help("Free border of each sheet, >= 0 [default: the tool's].",
-                               plain="mm"))
+                               plain="mm", plausible="0, or at least 1 mm"))
 @click.option("--spacing", type=LengthParam(plain="mm", min=0), default=None,
               help=length_help("Least distance between parts, at least the tool's cut width "
                                "[default: cut width + the tool's clearance].", plain="mm"))

@@ -99,7 +99,7 @@ def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, 
     )
     from dgpc_cli.stages.init_choice import choose
     from dgpc_cli.stages.init_patches import narrowed, plan, ratio_text
-    from dgpc_cli.stages.init_width import tell, widened_choice
+    from dgpc_cli.stages.init_width import require_met, tell, widened_choice
     from dgpc_cli.stages.inspect import summarize
 
     def make(m):
@@ -159,7 +159,7 @@ def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, 
     for k, p in enumerate(nets, start=1):     # every target checked before any is written
         check(stem.parent / f"{stem.name}.p{k}", force, p.mesh.path)
     nets = [narrowed(p) for p in nets]
-    written = []
+    made = []
     for k, p in enumerate(nets, start=1):
         net = p.net
         _record_choice(net, p.label, p.outcome, p.tried, options)
@@ -177,6 +177,12 @@ def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, 
             ReferenceSurface.from_mesh(surrounded(p.mesh, mesh, FIT_REACH * net.extend))
             if net.data.get("surroundings") else None))
         out = stem.parent / f"{stem.name}.p{k}"
+        # a given --strip-width no patch net meets: refused before any is written
+        require_met(net.data["init"]["choice"].get("strip_width"), options.get("units", ""),
+                    what=f"{out.name}: ")
+        made.append((out, net, p))
+    written = []
+    for out, net, p in made:
         files = {p.mesh.path: p.obj, **with_3dm(net_files(out, net), out, fmt)}
         write_files(files, force=force)
         if say is not None:

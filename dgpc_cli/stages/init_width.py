@@ -179,10 +179,26 @@ def widened_choice(mesh, first: tuple, make: Callable[[int], tuple], cols: int |
     return kept["choice"], width_record(limit, given, widen_cols, plain, plain[-1])
 
 
+def require_met(record: dict | None, units: str, what: str = "") -> None:
+    """Refuse (DgpcError naming ``--strip-width``, exit 1, before anything is written) a net
+    wider than a *given* ``--strip-width`` where ``init`` chose the columns: no net it may
+    make meets the request (``--strip-width 1e-9m``). The default limit, and a given one that
+    given ``--cols`` or ``--edge-length`` win over, only warn (:func:`tell`)."""
+    if not record or record["within"] or not (record["given"] and record["chooses_columns"]):
+        return
+    raise DgpcError(f"{what}{record['limit']:.4g} {units} cannot be met: the strips are up to "
+                    f"{record['widest']:.4g} {units} wide with {record['cols']} columns, and "
+                    f"init makes at most {MAX_COLS} columns in {WIDEN_STEPS} tries; give a "
+                    "larger --strip-width, or --patches to split the mesh",
+                    source="--strip-width")
+
+
 def tell(record: dict | None, units: str, say: Callable[[str], None] | None,
          what: str = "", options: str | None = None) -> None:
     """Say the :func:`width_line` of ``record``: a net made within the limit as ``init``'s
-    progress (``say``, when given), a net wider than the limit as a warning."""
+    progress (``say``, when given), a net wider than the limit as a warning; a given limit
+    that cannot be met is an error (:func:`require_met`)."""
+    require_met(record, units, what)
     line = width_line(record, units, what, options)
     if line is None:
         return

@@ -10,14 +10,14 @@ from typing import Any
 
 import numpy as np
 
-from dgpc_cli.errors import DgpcError, OptionSlip
+from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.laths import laths_files
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.units import same_units
-from dgpc_cli.stages.laths import crossing_gap, gap_slip, gridshell
+from dgpc_cli.stages.laths import checked_gap, crossing_gap, gridshell
 from dgpc_cli.stages.soundness import require_sound_net
 
 log = logging.getLogger(__name__)
@@ -46,15 +46,12 @@ def run_laths(net_a: Path, net_b: Path, output: Path, gap: Any, *, force: bool, 
     """Write the laths artifact ``output`` of the gridshell of the nets ``net_a`` and
     ``net_b``.
 
-    ``gap`` is a :class:`~dgpc_cli.cli.length.Length` or None (the default gap).
+    ``gap`` is a :class:`~dgpc_cli.io.length.Length` or None (the default gap).
     ``written(out_json)`` is called once the files are written. Raises
-    :class:`~dgpc_cli.errors.OptionSlip` (before any work) where a plain gap was likely meant
-    in mm."""
+    :class:`~dgpc_cli.errors.OptionSlip` (before any work) where the gap breaks the rule of
+    every length (:func:`~dgpc_cli.stages.laths.checked_gap`)."""
     a, b, units = _read_pair(net_a, net_b)
-    slip = gap_slip(a.f, b.f, gap, units)
-    if slip is not None:
-        raise OptionSlip(slip)
-    gap = crossing_gap(a.f, b.f, None if gap is None else gap.in_units(units, units))
+    gap = crossing_gap(a.f, b.f, checked_gap(a.f, b.f, gap, units))
     laths_a, laths_b, crossings = gridshell(a.f, b.f, gap=gap)
     if len(crossings.a) == 0:
         raise DgpcError("the laths of the two nets do not cross (are the nets on one reference, "
