@@ -20,7 +20,7 @@ from dgpc_cli.cli.options import (
 )
 from dgpc_cli.cli.patch_count import PatchCount
 from dgpc_cli.cli.progress import StatusLine
-from dgpc_cli.io.units import DEFAULT_UNITS, UNIT_MM
+from dgpc_cli.io.units import DEFAULT_UNITS, UNIT_MM, mm_per_unit
 from dgpc_cli.stages.init_nets import init_nets
 from dgpc_cli.surfaces.profiles import describe_builtins
 from dgpc_cli.surfaces.revolution import MAX_TWIST
@@ -205,10 +205,11 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     d = parse_direction(direction)
     given_units = units
     units = units or DEFAULT_UNITS
+    # the one limit of every length (dgpc_cli.io.length), in the net's unit
     if spacing is not None:
-        spacing = spacing.in_units(units, artifact_units=units)
+        spacing = spacing.check("--edge-length", units) / mm_per_unit(units)
     if strip_width is not None:
-        strip_width = strip_width.in_units(units, artifact_units=units)
+        strip_width = strip_width.check("--strip-width", units) / mm_per_unit(units)
     check_writable(output, force, *([reference_out] if reference_out else []))
     say = (lambda text: click.echo(text, err=True)) if show_progress(ctx) else None
     written = init_nets(output, units=units, units_given=given_units is not None, fmt=fmt,

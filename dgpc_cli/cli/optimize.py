@@ -58,7 +58,8 @@ from dgpc_cli.tolerances import tol as TOL
 @click.option("--coverage-tol", type=LengthParam(min=0, min_open=True), default=None,
               help=length_help("With a reference: a point of it counts as covered when the "
                                "net passes within this distance (metrics.coverage) [default: "
-                               "0.2 % of the reference's bounding-box diagonal]."))
+                               "0.2 % of the reference's bounding-box diagonal].",
+                               plausible="up to 10 % of the reference's diagonal"))
 @click.option("--solver", "backend", type=click.Choice(["auto", *BACKENDS]), default="auto",
               show_default=True, help="Sparse linear solver of the normal equations.")
 @output_opt
