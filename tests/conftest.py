@@ -8,7 +8,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "golden"))
 
-from pipelines import run  # noqa: E402
+from pipelines import ROOT, run  # noqa: E402
 
 
 @pytest.fixture(scope="session")
@@ -23,3 +23,19 @@ def pipeline_run(tmp_path_factory):
         return done[name]
 
     return get
+
+
+@pytest.fixture(scope="session")
+def demo_run(tmp_path_factory):
+    """The output folder of ``make demo`` (the timber-cladding pipeline at its default size,
+    as the README's quick start runs it), made once per session for every test that reads it
+    (the README's figures, the end marks of its cut sheets)."""
+    import os
+    import subprocess
+
+    out = tmp_path_factory.mktemp("demo")
+    env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+    subprocess.run(["make", "-s", "-o", ".venv/.installed", "pipeline-timber-cladding",
+                    f"OUT={out}", f"BIN={Path(sys.executable).parent}"],
+                   cwd=ROOT, check=True, env=env, stdout=subprocess.DEVNULL)
+    return out / "timber-cladding"

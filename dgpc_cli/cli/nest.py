@@ -9,6 +9,7 @@ import click
 from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import (
+    accept_status_opt,
     check_units,
     check_writable,
     force_opt,
@@ -83,13 +84,14 @@ def _parsed(parser):
               help="Random seed (engine spyrrow).")
 @click.option("--no-preview", "no_preview", is_flag=True,
               help="Write no SVG/PNG previews of the sheets (the DXFs only: faster).")
+@accept_status_opt
 @output_opt
 @force_opt
 @format_opt
 @click.pass_context
 def nest(ctx, stems, mold_stem, sheet_size, tool, kerf, tool_diameter, margin, spacing, border,
-         label_style, rotations, units_check, scale, engine, time_limit, seed, no_preview, output,
-         force, fmt):
+         label_style, rotations, units_check, scale, engine, time_limit, seed, no_preview,
+         accept_status, output, force, fmt):
     """Place every part of the flat artifact FLAT (each congruence class in its quantity) on
     as few sheets as it can, and write the sheets artifact -o SHEETS: SHEETS.json, .obj,
     .parts.csv and per sheet SHEETS.sheetNN.dxf/.svg/.png (with --mold, .moldmap.dxf).
@@ -112,7 +114,8 @@ def nest(ctx, stems, mold_stem, sheet_size, tool, kerf, tool_diameter, margin, s
         raise click.BadParameter(message, ctx=ctx, param_hint=f"'{option}'") from None
     opts = NestOptions(sheet_size=sheet_size, cutter=cutter, rotations=rotations, border=border,
                        label_style=label_style, scale=scale, engine=engine,
-                       time_limit=time_limit, seed=seed, previews=not no_preview)
+                       time_limit=time_limit, seed=seed, previews=not no_preview,
+                       accept_status=accept_status)
     run_nest(stems, output, opts, mold_stem=mold_stem, force=force, fmt=fmt,
              check=check_writable,
              check_units=lambda units, source: check_units(units_check, units, source),

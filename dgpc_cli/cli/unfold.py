@@ -8,6 +8,7 @@ import click
 
 from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import (
+    accept_status_opt,
     check_writable,
     force_opt,
     format_opt,
@@ -44,12 +45,13 @@ from dgpc_cli.stages.unfold_run import UnfoldOptions, run_unfold
                                "joint cannot keep it].",
                                plausible="up to the stock length"))
 @label_style_opt
+@accept_status_opt
 @output_opt
 @force_opt
 @format_opt
 @click.pass_context
-def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, output, force,
-           fmt):
+def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_style,
+           accept_status, output, force, fmt):
     """Develop the planar-quad strips of the strips artifact STEM into the plane (paper §6.2.4).
 
     Records per part the closed outline, the rulings (score lines), a label point, the edge
@@ -78,6 +80,7 @@ def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_st
         raise click.UsageError("--stagger goes with --stock-length")
     check_writable(output, force, csv_path(output), csv_path(output, "assembly"))
     opts = UnfoldOptions(congruence_tol=congruence_tol, label_style=label_style,
-                         mirror_ok=mirror_ok, stock_length=stock_length, stagger=stagger)
+                         mirror_ok=mirror_ok, stock_length=stock_length, stagger=stagger,
+                         accept_status=accept_status)
     run_unfold(stem, output, opts, force=force, fmt=fmt,
                written=lambda out_json: click.echo(str(out_json)))

@@ -24,6 +24,7 @@ from dgpc_cli.stages.extract_mold import (
     check_max_length,
     extract_mold,
 )
+from dgpc_cli.stages.input_status import check_inputs, with_accepted
 from dgpc_cli.stages.soundness import require_sound_net
 
 log = logging.getLogger(__name__)
@@ -40,10 +41,11 @@ class MoldOptions:
     max_length: object = None       # a Length as given (its unit or none), or None
     tol: float | None = None        # None: DEFAULT_TOL_FACTOR × max_strain
     max_strain: float = DEFAULT_MAX_STRAIN
+    accept_status: bool = False     # go on with nets not converged (stages.input_status)
 
 
 def _files(output: Path, opts: MoldOptions, mold, metrics: dict, loaded, unit: str, tol: float,
-           max_length: float | None) -> dict:
+           max_length: float | None, carried: list[dict]) -> dict:
     """The mold artifact's files of ``mold`` (of metrics ``metrics``) extracted from the nets
     ``loaded``."""
     paths = mold_paths(output)
@@ -77,7 +79,8 @@ def _files(output: Path, opts: MoldOptions, mold, metrics: dict, loaded, unit: s
                     "mold_max_length": max_length, "revolution_tol": tol,
                     "max_strain": opts.max_strain, "units": unit},
         metrics=metrics,
-        status={"state": "ok", "lambda_lowered": mer.lowered, "message": message},
+        status=with_accepted({"state": "ok", "lambda_lowered": mer.lowered,
+                              "message": message}, carried),
     )
 
 
@@ -94,6 +97,9 @@ def run_extract_mold(nets: list[Path], output: Path, opts: MoldOptions, *, force
     ``written(json_path)`` is called once the files are written."""
     tol = opts.tol if opts.tol is not None else DEFAULT_TOL_FACTOR * opts.max_strain
     loaded = [(str(artifact_paths(stem)[0]), read_net(stem)) for stem in nets]
+    carried = check_inputs([(f"net{k + 1}", name, net.status)
+                            for k, (name, net) in enumerate(loaded)], "extract-mold",
+                           opts.accept_status)
     for name, net in loaded:
         require_sound_net(net.f, name)
     unit = same_units([(name, net.units) for name, net in loaded])
@@ -107,7 +113,7 @@ def run_extract_mold(nets: list[Path], output: Path, opts: MoldOptions, *, force
     check_max_length(mold, given, unit)
     chosen(mold.choice_line(unit))
     metrics = mold.metrics()
-    files = _files(output, opts, mold, metrics, loaded, unit, tol, max_length)
+    files = _files(output, opts, mold, metrics, loaded, unit, tol, max_length, carried)
     write_files(with_3dm(files, output, fmt), force=force)
     json_path = mold_paths(output)["json"]
     written(json_path)

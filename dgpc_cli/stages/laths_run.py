@@ -17,18 +17,22 @@ from dgpc_cli.io.laths import laths_files
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.units import same_units
+from dgpc_cli.stages.input_status import check_inputs, with_accepted
 from dgpc_cli.stages.laths import checked_gap, crossing_gap, gridshell
 from dgpc_cli.stages.soundness import require_sound_net
 
 log = logging.getLogger(__name__)
 
 
-def _read_pair(net_a: Path, net_b: Path):
-    """The nets ``net_a`` and ``net_b`` and their common unit, refused (DgpcError) where they
-    are one net, not sound, or in different units; warns where they record different
+def _read_pair(net_a: Path, net_b: Path, accept_status: bool):
+    """The nets ``net_a`` and ``net_b``, their common unit and the records of the laths'
+    ``status.accepted``, refused (DgpcError) where they are one net, not sound, in different
+    units, or (without ``accept_status``) not converged; warns where they record different
     references."""
     a, b = read_net(net_a), read_net(net_b)
     json_a, json_b = artifact_paths(net_a)[0], artifact_paths(net_b)[0]
+    carried = check_inputs([("net_a", json_a, a.status), ("net_b", json_b, b.status)],
+                           "laths", accept_status)
     if json_a.resolve() == json_b.resolve() or np.array_equal(a.f, b.f):
         raise DgpcError("is the same net as NET_A: its laths would lie on their own copies; "
                         "give two transversal nets", source=json_b)
@@ -38,11 +42,11 @@ def _read_pair(net_a: Path, net_b: Path):
     ref_a, ref_b = a.data.get("reference"), b.data.get("reference")
     if ref_a and ref_b and ref_a.get("sha256") != ref_b.get("sha256"):
         log.warning("%s and %s record different references", net_a, net_b)
-    return a, b, units
+    return a, b, units, carried
 
 
 def run_laths(net_a: Path, net_b: Path, output: Path, gap: Any, *, force: bool, fmt,
-              written: Callable[[Path], None]) -> None:
+              written: Callable[[Path], None], accept_status: bool = False) -> None:
     """Write the laths artifact ``output`` of the gridshell of the nets ``net_a`` and
     ``net_b``.
 
@@ -50,7 +54,7 @@ def run_laths(net_a: Path, net_b: Path, output: Path, gap: Any, *, force: bool, 
     ``written(out_json)`` is called once the files are written. Raises
     :class:`~dgpc_cli.errors.OptionSlip` (before any work) where the gap breaks the rule of
     every length (:func:`~dgpc_cli.stages.laths.checked_gap`)."""
-    a, b, units = _read_pair(net_a, net_b)
+    a, b, units, carried = _read_pair(net_a, net_b, accept_status)
     gap = crossing_gap(a.f, b.f, checked_gap(a.f, b.f, gap, units))
     laths_a, laths_b, crossings = gridshell(a.f, b.f, gap=gap)
     if len(crossings.a) == 0:
@@ -66,7 +70,8 @@ def run_laths(net_a: Path, net_b: Path, output: Path, gap: Any, *, force: bool, 
                "crossing_gap_max": float(crossings.gap.max()),
                "length_total": float(lengths.sum()), "length_max": float(lengths.max())}
     files = laths_files(output, all_laths, crossings, units=units, inputs=inputs,
-                        parameters={"gap": gap}, metrics=metrics)
+                        parameters={"gap": gap}, metrics=metrics,
+                        status=with_accepted({}, carried))
     write_files(with_3dm(files, output, fmt), force=force)
     log.info("%d laths, %d crossings, largest gap %.3g", len(all_laths), len(crossings.a),
              metrics["crossing_gap_max"])

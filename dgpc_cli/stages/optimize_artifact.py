@@ -155,7 +155,9 @@ def _guided_projection(prepared: PreparedNet, schedules: dict, handle_ids, handl
         relax=RELAX.get(s.mode), gpc_tol=s.gpc_tol if s.mode == "isometric" else None,
         max_strain=s.max_strain if s.mode == "isometric" else None)
     outcome.status, outcome.message = judge(outcome, net.f_mm, mode=s.mode,
-                                            max_strain=s.max_strain, gpc_tol=s.gpc_tol)
+                                            max_strain=s.max_strain, gpc_tol=s.gpc_tol,
+                                            handles=(handle_ids, handle_targets),
+                                            units=net.units)
     return outcome
 
 

@@ -16,6 +16,7 @@ from dgpc_cli.io.flat import FlatArtifact, flat_files
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.strips import read_strips
 from dgpc_cli.io.units import mm_per_unit, to_mm
+from dgpc_cli.stages.input_status import check_inputs, with_accepted
 from dgpc_cli.stages.soundness import require_sound_strips
 from dgpc_cli.stages.unfold import (
     checked_lengths,
@@ -40,19 +41,22 @@ class UnfoldOptions:
     mirror_ok: bool = False
     stock_length: Any = None
     stagger: Any = None
+    accept_status: bool = False     # go on with strips that fell short (stages.input_status)
 
 
-def _read_sound(stem: Path):
-    """The strips artifact ``stem`` and its JSON path, refused (DgpcError) where a strip or
-    a trimmed part of one is not sound."""
+def _read_sound(stem: Path, accept_status: bool):
+    """The strips artifact ``stem``, its JSON path and the records of the flat's
+    ``status.accepted``; refused (DgpcError) where its status falls short (without
+    ``accept_status``), or a strip or a trimmed part of one is not sound."""
     json_path, _ = artifact_paths(stem)
     strips = read_strips(stem)
+    carried = check_inputs([("strips", json_path, strips.status)], "unfold", accept_status)
     require_sound_strips(strips.geometry, [r["id"] for r in strips.records], json_path,
                          [[p["rows"] for p in r["trim"]["parts"]] if r.get("trim") else None
                           for r in strips.records],
                          [[p["outline"] for p in r["trim"]["parts"]] if r.get("trim") else None
                           for r in strips.records])
-    return strips, json_path
+    return strips, json_path, carried
 
 
 def run_unfold(stem: Path, output: Path, opts: UnfoldOptions, *, force: bool, fmt,
@@ -63,7 +67,7 @@ def run_unfold(stem: Path, output: Path, opts: UnfoldOptions, *, force: bool, fm
     ``written(out_json)`` is called once the files are written. Raises
     :class:`~dgpc_cli.errors.OptionSlip` (before any work) where a length breaks the rule of
     every length (:func:`~dgpc_cli.stages.unfold.checked_lengths`)."""
-    strips, json_path = _read_sound(stem)
+    strips, json_path, carried = _read_sound(stem, opts.accept_status)
     units = strips.units                 # computed in mm (dgpc_cli.io.units)
     stock_length, stagger, congruence_tol = opts.stock_length, opts.stagger, opts.congruence_tol
     geometry = [(to_mm(A, units), to_mm(B, units)) for A, B in strips.geometry]
@@ -99,6 +103,7 @@ def run_unfold(stem: Path, output: Path, opts: UnfoldOptions, *, force: bool, fm
                     "stock_length": None if stock_mm is None else stock_mm / mm_per_unit(units),
                     "stagger": None if stagger_mm is None else stagger_mm / mm_per_unit(units)},
         inputs={"strips": file_input(json_path, out_json.resolve().parent)},
-        metrics=flat_metrics(parts, classes, units), status={"n_classes": len(classes)})
+        metrics=flat_metrics(parts, classes, units),
+        status=with_accepted({"n_classes": len(classes)}, carried))
     write_files(with_3dm(flat_files(output, art), output, fmt), force=force)
     written(out_json)
