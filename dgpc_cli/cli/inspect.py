@@ -34,7 +34,7 @@ def _axis(ctx, param, value):
                                "reference's bounding-box diagonal].",
                                plausible="up to 10 % of the reference's diagonal"))
 def inspect(stem, axis, against, coverage_tol):
-    """Print the metrics of the artifact STEM (SPEC §7) as JSON on stdout.
+    """Print the metrics of the artifact STEM (docs/metrics.md) as JSON on stdout.
 
     For a net: R (the paper's constraint error at mean edge length 1), geometric residuals,
     Clairaut (with an axis), strain (with --against), Hausdorff distance (when the net records a
