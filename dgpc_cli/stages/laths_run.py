@@ -11,6 +11,8 @@ from typing import Any
 import numpy as np
 
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.fitting.soundness import require_sound_net
+from dgpc_cli.geodesics.laths import checked_gap, crossing_gap, gridshell
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.laths import laths_files
@@ -18,8 +20,6 @@ from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.units import same_units
 from dgpc_cli.stages.input_status import check_inputs, with_accepted
-from dgpc_cli.stages.laths import checked_gap, crossing_gap, gridshell
-from dgpc_cli.stages.soundness import require_sound_net
 
 log = logging.getLogger(__name__)
 

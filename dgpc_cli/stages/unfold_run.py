@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.fitting.soundness import require_sound_strips
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.flat import FlatArtifact, flat_files
@@ -17,7 +18,6 @@ from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.strips import read_strips
 from dgpc_cli.io.units import mm_per_unit, to_mm
 from dgpc_cli.stages.input_status import check_inputs, with_accepted
-from dgpc_cli.stages.soundness import require_sound_strips
 from dgpc_cli.stages.unfold import (
     checked_lengths,
     flat_metrics,
