@@ -173,3 +173,11 @@ def test_a_sheet_in_inches_does_not_ask_to_remake_a_net_in_metres(wall, tmp_path
 def test_a_sheet_beyond_the_limit_is_a_usage_error():
     with pytest.raises(ValueError, match="beyond 1000 km"):
         parse_sheet("1e308x1e308")
+
+
+def test_board_errors_give_the_stock_length_as_typed(wall, tmp_path):
+    """An error of the boards names the stock length with the unit the user typed (and the
+    lengths it computed with their unit, mm), not a bare number."""
+    line = _refused(tmp_path, "unfold", wall / "s", "--stock-length", "30cm",
+                    "-o", tmp_path / "f", code=1)
+    assert line.startswith("Error: --stock-length 30cm: 300 mm is shorter than the strips")
