@@ -166,6 +166,6 @@ class Length:
                  f"{noun}, {span.miss(mm)}")
         meant = next((self.value * mm_per_unit(u) for u in READINGS
                       if u != unit and span.holds(self.value * mm_per_unit(u))), None)
-        guess = f"; did you mean {meant:.4g}mm?" if meant is not None else ""
+        guess = f"; did you mean {meant:.6g}mm?" if meant is not None else ""
         return f"{taken}{guess} (to mean it as typed, give its unit: {self.shown()}{unit})"
 
