@@ -140,3 +140,18 @@ def test_a_strip_width_that_cannot_be_met_is_refused(cap, tmp_path, width):
     assert f"at most {MAX_COLS} columns" in lines[-1]
     assert not any(line.startswith("warning") for line in lines)
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--strip-width", 2400], "--strip-width 2400 read as m (the net's unit) is a 2400 m strip "
+                              "width, above the mesh's diagonal (14.44 m); did you mean 2400mm?"),
+    (["--edge-length", 250], "--edge-length 250 read as m (the net's unit) is a 250 m edge, "
+                             "above half the mesh's diagonal (7.2"),
+])
+def test_a_plain_length_far_off_the_mesh_is_a_usage_error(cap, tmp_path, args, words):
+    """With --units m a plain 2400 meant in mm is a 2400 m strip on a 10 m cap: refused once
+    the mesh is read, before any net is made, naming both readings; nothing written."""
+    r = dgpc("init", cap, "--units", "m", *GIVEN, *args, "-o", tmp_path / "n", expect=2)
+    lines = [line for line in r.stderr.splitlines() if line.strip()]
+    assert len(lines) == 1 and words in lines[0]
+    assert list(tmp_path.iterdir()) == []

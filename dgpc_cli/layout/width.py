@@ -45,6 +45,24 @@ MAX_COLS = 101
 T = TypeVar("T")
 
 
+def plausible_spans(diagonal: float, units: str) -> dict:
+    """Where a plain ``--edge-length`` and ``--strip-width`` are plausible on a mesh whose
+    bounding-box diagonal is ``diagonal`` (in ``units``): an edge up to half the diagonal (a
+    net of three columns at least), a strip width from a thousandth of the diagonal to the
+    diagonal (:class:`~dgpc_cli.io.length.Span`, mm; the rule of every length,
+    :mod:`dgpc_cli.io.length`)."""
+    from dgpc_cli.io.length import Span
+
+    k = mm_per_unit(units)
+    return {"--edge-length": Span(0.0, 0.5 * diagonal * k, "edge", low_open=True,
+                                  high_text=f"half the mesh's diagonal ({0.5 * diagonal:.4g} "
+                                            f"{units})"),
+            "--strip-width": Span(1e-3 * diagonal * k, diagonal * k, "strip width",
+                                  low_text=f"a thousandth of the mesh's diagonal "
+                                           f"({1e-3 * diagonal:.4g} {units})",
+                                  high_text=f"the mesh's diagonal ({diagonal:.4g} {units})")}
+
+
 def default_limit(units: str, units_given: bool) -> float | None:
     """The largest strip width without ``--strip-width``, in ``units``: the default for a mesh
     whose unit is given, None for a mesh without one."""
