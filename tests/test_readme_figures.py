@@ -208,3 +208,9 @@ def test_the_demo_wall_in_the_unfold_text(demo):
                                              ("3.5e-6", 4.0038e-6, False)])
 def test_the_precision_rule(text, value, ok):
     assert agrees(text, value) == ok
+
+
+def test_make_demo_ends_with_how_dgpc_is_reached(demo_run):
+    lines = (demo_run.parent / "make-demo.log").read_text().strip().splitlines()
+    assert lines[-1].startswith("dgpc: ")
+    assert ("source" in lines[-1] and "make install" in lines[-1]) or "on your PATH" in lines[-1]
