@@ -111,6 +111,20 @@ def test_the_exit_3_example_gives_the_figures_quoted(designed, tmp_path):
     check("eq", defect, m["gpc_angle_defect_max"], "its gpc angle defect")
 
 
+def test_the_cone_example_gives_one_template(tmp_path):
+    """"A net isometric to a surface of revolution gives one class": the README's cone block,
+    run as typed, its strips on one template."""
+    block, = [b for b in sh_blocks(README) if "--profile cone" in b]
+    env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+    run = subprocess.run(["bash", "-e", "-c", block], cwd=tmp_path, env=env,
+                         capture_output=True, text=True, check=False)
+    assert run.returncode == 0 and "warning" not in run.stderr, run.stderr
+    strips, = quoted(r"cone-fig-overlay\.png: the (\d+) strips on one template")
+    metrics = inspect(tmp_path / "cone-flat")
+    assert metrics["n_classes"] == 1 and metrics["n_parts"] == int(strips)
+    assert (tmp_path / "cone-fig-overlay.png").is_file()
+
+
 # -- the demo -------------------------------------------------------------------------------------
 
 @pytest.fixture(scope="module")
