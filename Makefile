@@ -12,6 +12,8 @@ LATEST := .venv-latest
 # shells' defaults), pointing into this checkout's .venv.
 PREFIX ?= $(HOME)/.local
 BINDIR ?= $(PREFIX)/bin
+# pytest-xdist: one worker per core; tests sharing a module fixture stay on one (tests/conftest.py).
+PARALLEL := -n auto --dist loadgroup
 
 .DEFAULT_GOAL := help
 .PHONY: help setup install uninstall test test-latest lock demo bench lint clean pipelines golden
@@ -29,7 +31,7 @@ setup: $(STAMP) ## Create .venv and install dgpc with its test extras, pinned by
 
 # How a shell reaches `dgpc`: this checkout's link on PATH, else the two ways to get there.
 REACH = if [ "$$(command -v dgpc)" = "$(BINDIR)/dgpc" ] && \
-	    [ "$$(readlink $(BINDIR)/dgpc)" = "$(CURDIR)/$(BIN)/dgpc" ]; then \
+	    [ "$$(readlink $(BINDIR)/dgpc)" = "$(abspath $(BIN))/dgpc" ]; then \
 	    echo "dgpc: on your PATH ($(BINDIR)/dgpc, make install): type 'dgpc --help'"; \
 	  else \
 	    echo "dgpc: the command is $(BIN)/dgpc; to type 'dgpc ...' as the README does, run \
@@ -41,20 +43,20 @@ install: setup ## Put the dgpc command on PATH: a link BINDIR/dgpc (~/.local/bin
 	@if [ -e "$(BINDIR)/dgpc" ] && [ ! -L "$(BINDIR)/dgpc" ]; then \
 	    echo "install: $(BINDIR)/dgpc exists and is not a link: left alone (give BINDIR=DIR)" >&2; \
 	    exit 1; fi
-	@ln -sfn "$(CURDIR)/$(BIN)/dgpc" "$(BINDIR)/dgpc"
-	@echo "install: $(BINDIR)/dgpc -> $(CURDIR)/$(BIN)/dgpc"
+	@ln -sfn "$(abspath $(BIN))/dgpc" "$(BINDIR)/dgpc"
+	@echo "install: $(BINDIR)/dgpc -> $(abspath $(BIN))/dgpc"
 	@case ":$$PATH:" in *":$(BINDIR):"*) \
 	    echo "install: $(BINDIR) is on your PATH: type 'dgpc --help' (a new shell may need 'hash -r')";; \
 	  *) echo "install: $(BINDIR) is not on your PATH: add  export PATH=\"$(BINDIR):\$$PATH\"  to your shell's profile (~/.bashrc, ~/.zshrc), then open a new shell";; \
 	esac
 
 uninstall: ## Remove the link make install made (only if it points into this checkout).
-	@if [ -L "$(BINDIR)/dgpc" ] && [ "$$(readlink "$(BINDIR)/dgpc")" = "$(CURDIR)/$(BIN)/dgpc" ]; then \
+	@if [ -L "$(BINDIR)/dgpc" ] && [ "$$(readlink "$(BINDIR)/dgpc")" = "$(abspath $(BIN))/dgpc" ]; then \
 	    rm "$(BINDIR)/dgpc" && echo "uninstall: removed $(BINDIR)/dgpc"; \
 	  else echo "uninstall: $(BINDIR)/dgpc is not this checkout's link: left alone"; fi
 
-test: setup ## Run the test suite.
-	$(BIN)/python -m pytest -q
+test: setup ## Run the test suite (in parallel: one worker per core).
+	$(BIN)/python -m pytest -q $(PARALLEL)
 
 test-latest: ## Run the tests with the newest releases pyproject.toml allows; reports, never fails.
 	rm -rf $(LATEST) && $(PYTHON) -m venv $(LATEST)
@@ -64,7 +66,7 @@ test-latest: ## Run the tests with the newest releases pyproject.toml allows; re
 	    | diff -U0 $(LOCK) - | grep '^[-+][A-Za-z]' \
 	    | sed 's/^-/test-latest: pinned /; s/^+/test-latest: newest /' || \
 	    echo "test-latest: the newest releases are the pinned ones"
-	@$(LATEST)/bin/python -m pytest -q -o cache_dir=$(LATEST)/.pytest_cache \
+	@$(LATEST)/bin/python -m pytest -q $(PARALLEL) -o cache_dir=$(LATEST)/.pytest_cache \
 	    && echo "test-latest: green with the newest releases" \
 	    || echo "test-latest: FAILURES with the newest releases (above); constraints.txt keeps CI on the pinned set"
 
