@@ -1,7 +1,7 @@
 """End marks on the part's axis, read back from the DXF files (ezdxf): on every part of the demo
 (its two cut sheets and its twelve copy templates) and of every gallery shape's templates, the
 chevron opens along the part and points at its first-row end, its row number reads along the
-part, and it is as large as the part's width allows (issue: on 7 of the demo's 12 parts the
+part, and it is as large as the part's width allows (before, on 7 of the demo's 12 parts the
 `R0` mark stood turned 90° and small)."""
 
 import ezdxf

@@ -1,7 +1,7 @@
 """The README stays true: its "Design your own" commands run as typed (a fresh shell with the
 `dgpc` command on PATH, in a folder beside the checkout's samples), and every figure it quotes
 of them and of the demo is what a run gives, within the precision quoted. The demo is run once
-per session (the ``demo_run`` fixture of conftest.py, shared with the end-mark tests)."""
+per test run (the ``demo_run`` fixture of conftest.py, shared with the end-mark tests)."""
 
 import json
 import os
