@@ -53,7 +53,7 @@ def run_laths(net_a: Path, net_b: Path, output: Path, gap: Any, *, force: bool, 
     ``gap`` is a :class:`~dgpc_cli.io.length.Length` or None (the default gap).
     ``written(out_json)`` is called once the files are written. Raises
     :class:`~dgpc_cli.errors.OptionSlip` (before any work) where the gap breaks the rule of
-    every length (:func:`~dgpc_cli.stages.laths.checked_gap`)."""
+    every length (:func:`~dgpc_cli.geodesics.laths.checked_gap`)."""
     a, b, units, carried = _read_pair(net_a, net_b, accept_status)
     gap = crossing_gap(a.f, b.f, checked_gap(a.f, b.f, gap, units))
     laths_a, laths_b, crossings = gridshell(a.f, b.f, gap=gap)
