@@ -211,13 +211,12 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
         strip_width = strip_width.in_units(units, artifact_units=units)
     check_writable(output, force, *([reference_out] if reference_out else []))
     say = (lambda text: click.echo(text, err=True)) if show_progress(ctx) else None
-    written = init_nets(output, units=units, units_given=given_units is not None, fmt=fmt,
-                        force=force, surface=surface, profile=profile, reference=reference,
-                        method=method, from_quads=from_quads, base=base, direction=d,
-                        angle=angle, rows=rows, cols=cols, spacing=spacing, span=span,
-                        twist=twist, reference_out=reference_out,
-                        largest_component=largest_component, extend=extend, patches=patches,
-                        strip_width=strip_width,
-                        check=check_writable, status=lambda: StatusLine(ctx, "init"), say=say)
-    for path in written:
-        click.echo(str(path))
+    init_nets(output, units=units, units_given=given_units is not None, fmt=fmt,
+              force=force, surface=surface, profile=profile, reference=reference,
+              method=method, from_quads=from_quads, base=base, direction=d,
+              angle=angle, rows=rows, cols=cols, spacing=spacing, span=span,
+              twist=twist, reference_out=reference_out,
+              largest_component=largest_component, extend=extend, patches=patches,
+              strip_width=strip_width,
+              check=check_writable, status=lambda: StatusLine(ctx, "init"), say=say,
+              written=lambda path: click.echo(str(path)))

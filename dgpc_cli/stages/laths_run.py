@@ -47,9 +47,9 @@ def run_laths(net_a: Path, net_b: Path, output: Path, gap: Any, *, force: bool, 
     ``net_b``.
 
     ``gap`` is a :class:`~dgpc_cli.cli.length.Length` or None (the default gap).
-    ``written(out_json)`` is called once the files are written. Raises
-    :class:`~dgpc_cli.errors.OptionSlip` (before any work) where a plain gap was likely meant
-    in mm."""
+    ``written(out_json)`` is called at the commit of the files (nothing is written when it
+    fails). Raises :class:`~dgpc_cli.errors.OptionSlip` (before any work) where a plain gap
+    was likely meant in mm."""
     a, b, units = _read_pair(net_a, net_b)
     slip = gap_slip(a.f, b.f, gap, units)
     if slip is not None:
@@ -70,7 +70,6 @@ def run_laths(net_a: Path, net_b: Path, output: Path, gap: Any, *, force: bool, 
                "length_total": float(lengths.sum()), "length_max": float(lengths.max())}
     files = laths_files(output, all_laths, crossings, units=units, inputs=inputs,
                         parameters={"gap": gap}, metrics=metrics)
-    write_files(with_3dm(files, output, fmt), force=force)
+    write_files(with_3dm(files, output, fmt), force=force, announce=lambda: written(json_path))
     log.info("%d laths, %d crossings, largest gap %.3g", len(all_laths), len(crossings.a),
              metrics["crossing_gap_max"])
-    written(json_path)

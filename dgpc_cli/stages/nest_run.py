@@ -77,7 +77,8 @@ def run_nest(stems, output: Path, opts: NestOptions, *, mold_stem: Path | None, 
     ``check(stem, force, *extra)`` refuses the outputs before any is read;
     ``check_units(units, json_path)`` checks the flats' unit against the command's;
     ``progressbar(length, label)`` is a context manager with ``update``;
-    ``written(out_json)`` is called once the files are written."""
+    ``written(out_json)`` is called at the commit of the files (nothing is written when it
+    fails)."""
     stems = with_members(stems)
     json_paths = [artifact_paths(stem)[0] for stem in stems]
     check(output, force, extra_path(output, "parts_csv"),
@@ -131,5 +132,5 @@ def run_nest(stems, output: Path, opts: NestOptions, *, mold_stem: Path | None, 
                          metrics=metrics,
                          status={"sheet_count": result.sheet_count,
                                  "deterministic": opts.engine == "fill"})
-    write_files(with_3dm(files, output, fmt, parts=flat_parts), force=force)
-    written(out_json)
+    write_files(with_3dm(files, output, fmt, parts=flat_parts), force=force,
+                announce=lambda: written(out_json))
