@@ -210,7 +210,8 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     if strip_width is not None:
         strip_width = strip_width.in_units(units, artifact_units=units)
     check_writable(output, force, *([reference_out] if reference_out else []))
-    say = (lambda text: click.echo(text, err=True)) if show_progress(ctx) else None
+    said: list[str] = []    # what init chose and why: said once the nets are written, so
+    say = said.append if show_progress(ctx) else None   # that an error is one line alone
     init_nets(output, units=units, units_given=given_units is not None, fmt=fmt,
               force=force, surface=surface, profile=profile, reference=reference,
               method=method, from_quads=from_quads, base=base, direction=d,
@@ -220,3 +221,5 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
               strip_width=strip_width,
               check=check_writable, status=lambda: StatusLine(ctx, "init"), say=say,
               written=lambda path: click.echo(str(path)))
+    for line in said:
+        click.echo(line, err=True)

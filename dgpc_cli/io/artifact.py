@@ -126,9 +126,9 @@ def listed_path(text: Any, json_path: str | Path, field: str) -> Path:
     if ".." in posix.parts or ".." in windows.parts:
         raise DgpcError(f"{field}: {text!r} leads out of the artifact's folder ('..'); the "
                         "files an artifact lists lie in its own folder", source=json_path)
-    folder = Path(json_path).resolve().parent
+    folder = Path(os.path.realpath(json_path)).parent
     path = folder / posix
-    if not path.resolve().is_relative_to(folder):
+    if not Path(os.path.realpath(path)).is_relative_to(folder):   # a loop stays: read says
         raise DgpcError(f"{field}: {text!r} is a symbolic link that leads out of the "
                         "artifact's folder; the files an artifact lists lie in its own folder",
                         source=json_path)

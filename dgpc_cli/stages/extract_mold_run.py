@@ -90,8 +90,9 @@ def run_extract_mold(nets: list[Path], output: Path, opts: MoldOptions, *, force
 
     ``check_units(unit, source)`` checks the nets' unit against the one the user expects
     (raising where they differ); a plain ``--mold-max-length`` likely meant in mm raises
-    :class:`~dgpc_cli.errors.OptionSlip` (nothing is written); ``chosen(line)`` is given
-    the one line saying which surface of revolution the mold is; ``written(json_path)`` is
+    :class:`~dgpc_cli.errors.OptionSlip` (nothing is written); ``chosen(line)`` is given,
+    once written, the one line saying which surface of revolution the mold is (so that an
+    error before is one line alone); ``written(json_path)`` is
     called at the commit of the files (nothing is written when it fails)."""
     tol = opts.tol if opts.tol is not None else DEFAULT_TOL_FACTOR * opts.max_strain
     loaded = [(str(artifact_paths(stem)[0]), read_net(stem)) for stem in nets]
@@ -112,11 +113,11 @@ def run_extract_mold(nets: list[Path], output: Path, opts: MoldOptions, *, force
     slip = max_length_slip(mold, given, unit)
     if slip is not None:
         raise OptionSlip(slip)
-    chosen(mold.choice_line(unit))
     metrics = mold.metrics()
     files = _files(output, opts, mold, metrics, loaded, unit, tol, max_length)
     json_path = mold_paths(output)["json"]
     write_files(with_3dm(files, output, fmt), force=force, announce=lambda: written(json_path))
+    chosen(mold.choice_line(unit))      # once written: an error before it is one line alone
     mer = mold.meridian
     log.info("%s: N = %.6g (λ = %.6g), %d mold pieces, %d curved and %d flat panels, isometry "
              "error ≤ %.3g", json_path, mer.segments, mer.lam, metrics["pieces"],

@@ -85,6 +85,7 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
                 say(f"init: {made.poor}: trying --patches auto (one net each where one net's "
                     "strips vary in width more than 3x; --patches 1 keeps one net)")
         if patches is not None:
+            said: list[str] = []            # what the patches' nets were: once written
             with held_writes() as held:
                 nets = patch_nets(net, mesh, patches, output,
                                   {"method": method, "base": base, "direction": direction,
@@ -95,7 +96,8 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
                                    "largest_component": largest_component,
                                    "strip_width": strip_width,
                                    "strip_width_given": given_width, "units": units},
-                                  units=units, fmt=fmt, force=force, check=check, say=say,
+                                  units=units, fmt=fmt, force=force, check=check,
+                                  say=None if say is None else said.append,
                                   switched=switched)
             if nets:
                 members = [{"name": f"p{k}", "kind": "net", "json": j, "exit_code": 0,
@@ -103,6 +105,9 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
                            for k, j in enumerate(nets, start=1)]
                 write_patch_set(output, "init", members, force=force, held=held,
                                 announce=lambda: [written(j) for j in [*nets, json_path]])
+            for line in said:
+                say(line)
+            if nets:
                 return [*nets, json_path]
         elif made.poor and say is not None:
             say(f"init: {made.poor}; --patches auto cuts the mesh into patches, one net each, "
