@@ -8,6 +8,8 @@ DEMO   := demo-out
 # pyproject.toml keeps the ranges, for users who install dgpc into an environment of theirs.
 LOCK   := constraints.txt
 LATEST := .venv-latest
+# pytest-xdist: one worker per core; tests sharing a module fixture stay on one (tests/conftest.py).
+PARALLEL := -n auto --dist loadgroup
 
 .DEFAULT_GOAL := help
 .PHONY: help setup test test-latest lock demo bench lint clean pipelines golden
@@ -23,8 +25,8 @@ $(STAMP): pyproject.toml $(LOCK)
 
 setup: $(STAMP) ## Create .venv and install dgpc with its test extras, pinned by constraints.txt.
 
-test: setup ## Run the test suite.
-	$(BIN)/python -m pytest -q
+test: setup ## Run the test suite (in parallel: one worker per core).
+	$(BIN)/python -m pytest -q $(PARALLEL)
 
 test-latest: ## Run the tests with the newest releases pyproject.toml allows; reports, never fails.
 	rm -rf $(LATEST) && $(PYTHON) -m venv $(LATEST)
@@ -34,7 +36,7 @@ test-latest: ## Run the tests with the newest releases pyproject.toml allows; re
 	    | diff -U0 $(LOCK) - | grep '^[-+][A-Za-z]' \
 	    | sed 's/^-/test-latest: pinned /; s/^+/test-latest: newest /' || \
 	    echo "test-latest: the newest releases are the pinned ones"
-	@$(LATEST)/bin/python -m pytest -q -o cache_dir=$(LATEST)/.pytest_cache \
+	@$(LATEST)/bin/python -m pytest -q $(PARALLEL) -o cache_dir=$(LATEST)/.pytest_cache \
 	    && echo "test-latest: green with the newest releases" \
 	    || echo "test-latest: FAILURES with the newest releases (above); constraints.txt keeps CI on the pinned set"
 

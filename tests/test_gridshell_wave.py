@@ -2,18 +2,16 @@
 `dgpc laths`, cut list against the OBJ polylines."""
 
 import json
-from pathlib import Path
 
 import numpy as np
 import pytest
 from cli_helpers import dgpc
+from data_files import WAVE
 
+from dgpc_cli.geodesics.laths import Lath, find_crossings
 from dgpc_cli.io.laths import read_cut_list, read_polylines
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import read_net
-from dgpc_cli.stages.laths import Lath, find_crossings
-
-WAVE = Path(__file__).resolve().parents[2] / "shared" / "data" / "wave.obj"
 
 
 @pytest.fixture(scope="module")

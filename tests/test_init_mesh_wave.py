@@ -2,17 +2,15 @@
 gpc defect ≤ 1e-6 rad, every vertex within 1.2e-3 of the diagonal, coverage ≥ 50 %)."""
 
 import json
-from pathlib import Path
 
 import numpy as np
 import pytest
 from cli_helpers import dgpc, metrics
+from data_files import WAVE
 
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import read_net
-
-WAVE = Path(__file__).resolve().parents[2] / "shared" / "data" / "wave.obj"
 
 
 @pytest.fixture(scope="module")

@@ -1,16 +1,14 @@
 """Reference meshes: the four formats, cleaning, and one-line rejections."""
 
 import hashlib
-from pathlib import Path
 
 import numpy as np
 import pytest
 import trimesh
+from data_files import WAVE
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.mesh import _plain_obj, consistent_winding, load_mesh, write_mesh_obj
-
-DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
 
 
 def plane_grid(k=4):
@@ -25,7 +23,7 @@ def plane_grid(k=4):
 
 
 def test_wave_obj():
-    path = DATA / "wave.obj"
+    path = WAVE
     mesh = load_mesh(path)
     assert mesh.faces.shape == (5705, 3) and mesh.faces.dtype == np.int64
     assert mesh.vertices.shape == (3021, 3) and mesh.vertices.dtype == np.float64
@@ -118,7 +116,7 @@ def test_rejects_directory(tmp_path):
 
 
 def test_consistent_winding_restores_random_flips():
-    mesh = load_mesh(DATA / "wave.obj")
+    mesh = load_mesh(WAVE)
     rng = np.random.default_rng(7)
     flipped = rng.random(len(mesh.faces)) < 0.3
     flipped[0] = False  # the root face keeps its orientation
@@ -134,7 +132,7 @@ def test_consistent_winding_restores_random_flips():
 def test_consistent_winding_leaves_a_consistent_mesh_as_it_is():
     """A consistent mesh comes back unchanged (a copy), also with a third face on an edge (not
     a manifold edge, so it constrains nothing); one flipped face among them is turned back."""
-    mesh = load_mesh(DATA / "wave.obj")
+    mesh = load_mesh(WAVE)
     a, b, _ = mesh.faces[0]
     extra = np.array([[b, a, len(mesh.vertices)]])               # a third face on edge (a, b)
     faces = np.concatenate([mesh.faces, extra])

@@ -2,11 +2,11 @@
 
 import json
 import math
-from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
 from cli_helpers import dgpc, metrics
+from data_files import WAVE
 from mold_samples import (
     deform,
     gehry_nets,
@@ -101,8 +101,7 @@ def test_panels_match_their_mold_patch_and_a_non_isometric_panel_is_caught(tmp_p
 def test_fit_on_a_surface_not_isometric_to_revolution_fails_naming_rows(tmp_path):
     """A net fitted to a freeform patch (wave.obj) is a gpc net whose strip widths vary along
     the parallels: (5) fails and nothing is written."""
-    wave = Path(__file__).resolve().parents[2] / "shared" / "data" / "wave.obj"
-    dgpc("init", wave, "--method", "geodesic", "--rows", 12, "--cols", 8, "--extend", 0,
+    dgpc("init", WAVE, "--method", "geodesic", "--rows", 12, "--cols", 8, "--extend", 0,
          "-o", tmp_path / "e0")
     dgpc("optimize", tmp_path / "e0", "--mode", "fit", "-o", tmp_path / "e")
     fitted = metrics(tmp_path / "e")

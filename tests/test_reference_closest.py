@@ -1,15 +1,12 @@
 """Closest points and normals on the reference surface (libigl AABB)."""
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 import trimesh
+from data_files import WAVE
 
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.io.mesh import load_mesh
-
-DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
 
 
 def plane(k=4, flip=False):
@@ -81,7 +78,7 @@ def test_scaled():
 
 
 def test_from_mesh_wave_vertices_are_fixed_points():
-    mesh = load_mesh(DATA / "wave.obj")
+    mesh = load_mesh(WAVE)
     surface = ReferenceSurface.from_mesh(mesh)
     p, n = surface.closest(mesh.vertices)
     assert np.allclose(p, mesh.vertices, atol=1e-9 * mesh.bbox_diagonal)

@@ -4,18 +4,16 @@ The net is a planar 15×12 grid projected vertically onto the mesh and fitted wi
 ``optimize --mode fit``.
 """
 
-from pathlib import Path
 
 import numpy as np
 import pytest
 import trimesh
 from cli_helpers import dgpc, metrics
+from data_files import WAVE
 
 from dgpc_cli.io.flat import read_flat
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import NetArtifact, write_net
-
-WAVE = Path(__file__).resolve().parents[2] / "shared" / "data" / "wave.obj"
 
 
 def _projected_grid(m=15, n=12, x=(-4.0, 4.0), y=(2.0, 8.0)):
