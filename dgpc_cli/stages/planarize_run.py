@@ -15,6 +15,7 @@ from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.strips import StripsArtifact, strips_files
+from dgpc_cli.stages.input_status import check_inputs, with_accepted
 from dgpc_cli.stages.strip_fabrication import (
     DEVIATION_WARN,
     SEAM_STEP_WARN,
@@ -53,6 +54,7 @@ class PlanarizeOptions:
     ruling_fairness: float = RULING_FAIRNESS
     max_ruling_turn: float = MAX_RULING_TURN
     refine: int | None = None       # None: --refine auto
+    accept_status: bool = False     # go on with a net not converged (stages.input_status)
 
 
 def _outline(net, json_path):
@@ -197,6 +199,8 @@ def run_planarize_strips(stem: Path, output: Path, opts: PlanarizeOptions, *, fo
     polish did not converge or rulings cross."""
     json_path, _ = artifact_paths(stem)
     net = read_net(stem)
+    carried = check_inputs([("net", json_path, net.status)], "planarize-strips",
+                           opts.accept_status)
     require_sound_net(net.f, json_path, gpc=False)
     columns = parse_strip_range(opts.strip_range, net.shape[1])
     outline = _outline(net, json_path) if opts.trim else None
@@ -212,6 +216,7 @@ def run_planarize_strips(stem: Path, output: Path, opts: PlanarizeOptions, *, fo
     else:
         done = run(opts.refine)
     art = done.art
+    art.status = with_accepted(art.status, carried)
     failed, crossed = art.status["polish_not_converged"], art.status["rulings_cross"]
     for note in done.notes:
         log.warning("%s", note)
