@@ -58,7 +58,8 @@ def files_of(d: Path) -> set[str]:
 
 def test_the_set_records_the_failed_member(failed_unfold):
     roof, r = failed_unfold
-    assert r.stdout.split() == [str(roof / "f.p2.json")]    # the output of p2 only
+    # the output of p2 only, and the set (written: it records the failure)
+    assert r.stdout.split() == [str(roof / "f.p2.json"), str(roof / "f.json")]
     last = r.stderr.strip().splitlines()[-1]
     assert "f.json" in last and "1 of the patch set's 2 members failed (p1)" in last
     assert any(line.startswith("unfold: p1: exit 1:") and "shorter than the strips are wide"
@@ -143,15 +144,21 @@ def test_a_rerun_that_passes_replaces_the_failed_set(roof, tmp_path):
     assert not list(tmp_path.glob("f.p1.*"))
 
 
-def test_every_member_failed_is_recorded_too(roof, tmp_path):
-    """Stock shorter than both members' strips are wide: the set lists no output, only the
-    failures (and is refused downstream)."""
-    dgpc("unfold", roof / "s", "--stock-length", "0.1m", "-o", tmp_path / "f", expect=1)
-    doc = read_patch_set(tmp_path / "f")
-    assert doc["data"]["members"] == []
-    assert [m["name"] for m in doc["data"]["failed"]] == ["p1", "p2"]
-    r = dgpc("nest", tmp_path / "f", "--sheet", "8000x3000", "-o", tmp_path / "o", expect=1)
-    assert "members p1 (exit 1), p2 (exit 1) failed in `dgpc unfold`" in r.stderr
+def test_every_member_failed_writes_nothing(roof, tmp_path):
+    """Stock shorter than both members' strips are wide: a set of failures only is no output,
+    so nothing is written (over an older set with --force, that set stays as it was), and
+    the error is one line naming both members and the first reason."""
+    r = dgpc("unfold", roof / "s", "--stock-length", "0.1m", "-o", tmp_path / "f", expect=1)
+    assert not list(tmp_path.iterdir()) and r.stdout == ""
+    (line,) = r.stderr.strip().splitlines()
+    assert line.startswith(f"Error: {roof / 's.json'}: every member of the patch set failed "
+                           "(p1, p2), so nothing was written; p1: ")
+    assert "shorter than the strips are wide" in line
+    dgpc("unfold", roof / "s", "--stock-length", "0.7m", "-o", tmp_path / "f", expect=1)
+    before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+    dgpc("unfold", roof / "s", "--stock-length", "0.1m", "-o", tmp_path / "f", "--force",
+         expect=1)
+    assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
 
 
 @pytest.mark.parametrize("bad, field", [

@@ -9,6 +9,7 @@ by their ids.
 """
 
 import json
+import struct
 
 import numpy as np
 import pytest
@@ -239,3 +240,52 @@ def test_laths_model_layers():
     assert _user(a)["family"] == "A"
     assert float(_user(a)["length"]) == pytest.approx(
         np.linalg.norm(np.diff(pts, axis=0), axis=1).sum(), rel=1e-5)
+
+
+def test_bytes_depend_on_the_content_only(sample, tmp_path):
+    """Issue 39: a run into another folder at another moment writes the same .3dm bytes and so
+    the same JSON (it records the .3dm's sha256): no write time (the revision history reads
+    2000-01-01, the fixed time), no temporary path inside."""
+    (tmp_path / "deeper").mkdir()
+    for folder in (tmp_path, tmp_path / "deeper"):
+        for name in ("s.json", "s.obj"):
+            (folder / name).write_bytes((sample / name).read_bytes())
+        dgpc("unfold", folder / "s", "-o", folder / "flat", "--format", "3dm")
+    for name in ("flat.3dm", "flat.json"):
+        assert (tmp_path / name).read_bytes() == (tmp_path / "deeper" / name).read_bytes()
+    assert (tmp_path / "flat.3dm").read_bytes() == (sample / "flat.3dm").read_bytes()
+    blob = (tmp_path / "flat.3dm").read_bytes()
+    assert b"dgpc-3dm" not in blob and str(tmp_path).encode() not in blob
+    assert str(tmp_path).encode("utf-16-le") not in blob
+    model = rhino3dm.File3dm.Read(str(tmp_path / "flat.3dm"))
+    assert str(model.Created) == str(model.LastEdited) == "2000-01-01 00:00:00"
+
+
+def test_fixed_times_patches_only_a_well_formed_archive():
+    from dgpc_cli.errors import DgpcError
+    from dgpc_cli.io.rhino import net_model
+    from dgpc_cli.io.rhino_archive import FIXED_TIME, fixed_times
+
+    model = net_model(np.zeros((3, 3, 3)) + np.arange(3)[:, None, None], "m")
+    blob = model.to_bytes()
+    assert fixed_times(blob) == blob                       # already fixed: a no-op
+    assert len(blob) > 1000 and struct_times(blob) == [FIXED_TIME, FIXED_TIME]
+    with pytest.raises(DgpcError, match="no 3dm header"):
+        fixed_times(b"not a 3dm" + blob)
+    spoiled = bytearray(blob)
+    offset = blob.index(struct.pack("<8i", *FIXED_TIME))
+    spoiled[offset] ^= 1                                    # the CRC no longer matches
+    with pytest.raises(DgpcError, match="CRC does not match"):
+        fixed_times(bytes(spoiled))
+
+
+def struct_times(blob: bytes) -> list[tuple[int, ...]]:
+    """The 8-int times found in ``blob`` at the fixed time's bytes (both of the history)."""
+    from dgpc_cli.io.rhino_archive import FIXED_TIME
+
+    packed = struct.pack("<8i", *FIXED_TIME)
+    found, start = [], 0
+    while (at := blob.find(packed, start)) >= 0:
+        found.append(struct.unpack_from("<8i", blob, at))
+        start = at + 1
+    return found

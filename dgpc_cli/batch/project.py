@@ -41,6 +41,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.bounded_read import read_regular
 
 #: The stages of a patch, in the order they run.
 PATCH_STAGES = ("init", "optimize", "planarize-strips", "unfold")
@@ -120,12 +121,14 @@ def load_project(path: str | Path, specs: dict[str, StageSpec]) -> Project:
     """Read and check the project file ``path``; ``specs`` describes every stage's command."""
     path = Path(path)
     try:
-        text = path.read_bytes().decode("utf-8")
+        data = read_regular(path, "a project file (TOML)")
+    except DgpcError as e:
+        raise ProjectError(e.reason, source=path) from None
+    try:
+        text = data.decode("utf-8")
         doc = tomllib.loads(text)
-    except OSError as e:
-        raise ProjectError(f"cannot read: {e.strerror or e}", source=path) from None
     except UnicodeDecodeError as e:
-        line = data_line(path.read_bytes(), e.start)
+        line = data_line(data, e.start)
         raise ProjectError(f"not UTF-8 text: byte 0x{e.object[e.start]:02x} at line {line} "
                            "(save the file as UTF-8)", source=path) from None
     except tomllib.TOMLDecodeError as e:

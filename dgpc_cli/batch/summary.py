@@ -169,10 +169,12 @@ def index_html(doc: dict, out: Path) -> str:
         "</body></html>", ""])
 
 
-def write_summary(doc: dict, out: Path) -> Path:
-    """Write ``batch.json`` and ``index.html`` into ``out`` (atomically); the JSON's path."""
+def write_summary(doc: dict, out: Path, announce=None) -> Path:
+    """Write ``batch.json`` and ``index.html`` into ``out`` (atomically); the JSON's path.
+    ``announce(path)`` prints the JSON's path at their commit (nothing is written when it
+    fails)."""
     out = Path(out)
     path = out / "batch.json"
     write_files({path: dumps_json(doc), out / "index.html": index_html(doc, out).encode()},
-                force=True)
+                force=True, announce=None if announce is None else lambda: announce(path))
     return path

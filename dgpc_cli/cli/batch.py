@@ -145,7 +145,7 @@ def batch(ctx, project, out, scheduler, workers, timeout, quiet):
             cluster.close()
     doc = batch_doc(proj, tasks, run.records, run.executed, out, wall_time_s=run.wall_time_s,
                     cluster=info)
-    path = write_summary(doc, out)
+    path = write_summary(doc, out, announce=lambda written: click.echo(str(written)))
     ran = sum(run.executed.values())
     counts = {s: sum(1 for p in doc["patches"].values() if p["status"] == s)
               for s in ("ok", "not_converged", "failed", "blocked")}
@@ -161,7 +161,6 @@ def batch(ctx, project, out, scheduler, workers, timeout, quiet):
                    + (f"; shared stages {doc['shared']['status']}" if "shared" in doc else "")
                    + f"; {ran} tasks ran, {len(tasks) - ran} reused or not run, in "
                    f"{_duration(run.wall_time_s)}", err=True)
-    click.echo(str(path))
     if doc["exit_code"] == 3:
         raise NotConverged("some tasks missed a tolerance (artifacts written; see "
                            "batch.json)", source=path)

@@ -226,14 +226,16 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
                 length.check(option, units, spans[option], "the net's")
 
     check_writable(output, force, *([reference_out] if reference_out else []))
-    say = (lambda text: click.echo(text, err=True)) if show_progress(ctx) else None
-    written = init_nets(output, units=units, units_given=given_units is not None, fmt=fmt,
-                        force=force, surface=surface, profile=profile, reference=reference,
-                        method=method, from_quads=from_quads, base=base, direction=d,
-                        angle=angle, rows=rows, cols=cols, spacing=spacing, span=span,
-                        twist=twist, reference_out=reference_out,
-                        largest_component=largest_component, extend=extend, patches=patches,
-                        strip_width=strip_width, check_lengths=check_lengths,
-                        check=check_writable, status=lambda: StatusLine(ctx, "init"), say=say)
-    for path in written:
-        click.echo(str(path))
+    said: list[str] = []    # what init chose and why: said once the nets are written, so
+    say = said.append if show_progress(ctx) else None   # that an error is one line alone
+    init_nets(output, units=units, units_given=given_units is not None, fmt=fmt,
+              force=force, surface=surface, profile=profile, reference=reference,
+              method=method, from_quads=from_quads, base=base, direction=d,
+              angle=angle, rows=rows, cols=cols, spacing=spacing, span=span,
+              twist=twist, reference_out=reference_out,
+              largest_component=largest_component, extend=extend, patches=patches,
+              strip_width=strip_width, check_lengths=check_lengths,
+              check=check_writable, status=lambda: StatusLine(ctx, "init"), say=say,
+              written=lambda path: click.echo(str(path)))
+    for line in said:
+        click.echo(line, err=True)

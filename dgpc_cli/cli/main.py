@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import importlib
 import logging
+import os
 import sys
 
 import click
@@ -85,9 +86,9 @@ class DgpcGroup(click.Group):
 
     def invoke(self, ctx):
         try:
-            return super().invoke(ctx)
+            result = super().invoke(ctx)
         except DgpcError as err:
-            click.echo(f"Error: {err}", err=True)
+            _error(ctx, str(err))
             ctx.exit(err.exit_code)
         except OptionSlip as slip:
             # an option's value found wrong once its input is read: a usage error, as click's
@@ -98,21 +99,58 @@ class DgpcGroup(click.Group):
         except click.UsageError as err:
             # One line, as every error (SPEC §2): click's own display adds the usage lines.
             command = f" (see '{err.ctx.command_path} --help')" if err.ctx is not None else ""
-            click.echo(f"Error: {' '.join(err.format_message().split())}{command}", err=True)
+            _error(ctx, f"{' '.join(err.format_message().split())}{command}")
             ctx.exit(err.exit_code)
         except (click.exceptions.Exit, click.ClickException, click.Abort):
             raise
         except OSError as err:  # stdout on a full disk or a closed pipe, say
             where = f"{err.filename}: " if err.filename else "cannot write the output: "
-            click.echo(f"Error: {where}{err.strerror or err}", err=True)
+            _error(ctx, f"{where}{err.strerror or err}")
             ctx.exit(1)
         except Exception as err:  # noqa: BLE001 - the last line of defence
             if ctx.obj and ctx.obj.get("verbosity", 0) > 0:
                 raise
             reason = " ".join(str(err).split()) or type(err).__name__
-            click.echo(f"Error: internal error ({type(err).__name__}): {reason} "
-                       "(run with -v for the traceback)", err=True)
+            _error(ctx, f"internal error ({type(err).__name__}): {reason} "
+                        "(run with -v for the traceback)")
             ctx.exit(1)
+        for line in held_warnings(ctx):
+            click.echo(f"warning: {line}", err=True)
+        return result
+
+
+def hold_warning(ctx, text: str) -> None:
+    """A warning found while parsing the options (a deprecated option name): shown once the
+    command has run, or folded into its error line, so that an error stays one line."""
+    ctx.meta.setdefault("dgpc_held_warnings", []).append(text)
+
+
+def held_warnings(ctx) -> list[str]:
+    return ctx.meta.pop("dgpc_held_warnings", [])
+
+
+def _error(ctx, text: str) -> None:
+    """The one error line on stderr, the held warnings folded in; stdout, if it failed, is
+    pointed at the null device so that the interpreter's last flush adds no second line."""
+    held = held_warnings(ctx)
+    also = f" (also: {'; '.join(held)})" if held else ""
+    click.echo(f"Error: {text}{also}", err=True)
+    _quiet_broken_stdout()
+
+
+def _quiet_broken_stdout() -> None:
+    stdout = sys.stdout
+    if stdout is None:
+        return
+    try:
+        stdout.flush()
+    except (OSError, ValueError):
+        try:
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, stdout.fileno())
+            os.close(devnull)
+        except (OSError, ValueError):
+            pass
 
 
 @click.group(cls=DgpcGroup, context_settings={"help_option_names": ["-h", "--help"]})
@@ -132,6 +170,9 @@ def cli(ctx, verbose, quiet):
     ctx.ensure_object(dict)
     ctx.obj["verbosity"] = verbose - quiet
     configure_logging(verbose - quiet)
+    if sys.stdout is None:      # started with stdout closed: its data would be lost
+        raise DgpcError("stdout is closed, and dgpc prints its data there (the paths it "
+                        "writes, metrics): nothing done; send it to a file or /dev/null")
 
 
 def main():  # pragma: no cover - console entry point

@@ -23,6 +23,11 @@ from dgpc_cli.nesting.tools import BIT_SPAN, KERF_SPAN, MARGIN_SPAN, TOOLS, reso
 from dgpc_cli.stages.nest import ENGINES, parse_rotations, parse_sheet
 from dgpc_cli.stages.nest_run import NestOptions, run_nest
 
+#: The largest ``--seed`` (32 bits: every engine takes it, and JSON readers keep it exact).
+MAX_SEED = 2**32 - 1
+#: The largest ``--time-limit`` per sheet, in seconds (a day).
+MAX_TIME_LIMIT = 86400.0
+
 
 def _parsed(parser):
     def callback(ctx, param, value):
@@ -77,11 +82,11 @@ def _parsed(parser):
 @click.option("--engine", type=click.Choice(ENGINES), default="fill", show_default=True,
               help="'fill': deterministic no-fit-polygon fill; 'spyrrow': spyrrow's strip "
                    "packer sheet by sheet (time-bounded, see --time-limit).")
-@click.option("--time-limit", type=FiniteFloat(min=0, min_open=True), default=10.0,
-              show_default=True, metavar="SEC",
-              help="spyrrow's time budget per sheet (engine spyrrow).")
-@click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True,
-              help="Random seed (engine spyrrow).")
+@click.option("--time-limit", type=FiniteFloat(min=0, min_open=True, max=MAX_TIME_LIMIT),
+              default=10.0, show_default=True, metavar="SEC",
+              help="spyrrow's time budget per sheet, at most a day (engine spyrrow).")
+@click.option("--seed", type=click.IntRange(min=0, max=MAX_SEED), default=0, show_default=True,
+              help="Random seed, 0 to 2^32 - 1 (engine spyrrow).")
 @click.option("--no-preview", "no_preview", is_flag=True,
               help="Write no SVG/PNG previews of the sheets (the DXFs only: faster).")
 @accept_status_opt

@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
 import click
 
+from dgpc_cli.cli.main import hold_warning
 from dgpc_cli.cli.output_path import OutputPath
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths
+from dgpc_cli.io.patch_set import files_read, files_written, real_path
 from dgpc_cli.io.units import UNIT_MM
 from dgpc_cli.stages.input_status import ACCEPT_HELP
 
@@ -31,14 +34,15 @@ format_opt = click.option(
 
 
 def old_name(old: str, new: str, type=None):
-    """A hidden option ``old``, the former name of the option ``new``: it warns on stderr and
+    """A hidden option ``old``, the former name of the option ``new``: it warns on stderr (once
+    the command has run, or in its error line: :func:`~dgpc_cli.cli.main.hold_warning`) and
     hands its value to ``new``, whose callback must be :func:`from_old_name` (its value wins
     when both are given). Scripts keep working while the help shows one name per meaning."""
     key = f"old_name:{new}"
 
     def callback(ctx, param, value):
         if value is not None:
-            click.echo(f"warning: {old} is deprecated, it is now {new}", err=True)
+            hold_warning(ctx, f"{old} is deprecated, it is now {new}")
             ctx.meta[key] = value
         return value
 
@@ -77,24 +81,18 @@ def check_units(given: str | None, actual: str, source) -> None:
                                  "set by `dgpc init --units`)", param_hint="'--expect-units'")
 
 
-def _written_by_inputs(value) -> set[Path]:
-    """The files an input path names: itself and, as an artifact stem, its JSON and OBJ."""
-    found = {Path(value).resolve()}
-    try:
-        found.update(p.resolve() for p in artifact_paths(value))
-    except DgpcError:
-        pass
-    return found
-
-
-def check_not_input(stem: Path, *extra: Path) -> None:
-    """Refuse (exit 1, with or without --force) an output that would overwrite one of the
-    command's own inputs: any path argument or option of the running command (an artifact
-    stem, a mesh, a handles file) that is ``STEM.json``, ``STEM.obj`` or one of ``extra``."""
+def check_not_input(stem: Path, *extra: Path, members: tuple[str, ...] = ()) -> None:
+    """Refuse (exit 1, with or without --force) an output that would overwrite or remove a
+    file of one of the command's own inputs: any path argument or option of the running
+    command (an artifact stem, a mesh, a handles file), with the files it records and, for a
+    patch set, its members' (:func:`~dgpc_cli.io.patch_set.files_read`), against
+    ``STEM.json``, ``STEM.obj``, the files the output now at ``STEM`` wrote (which ``--force``
+    removes), ``extra``, and the same of ``STEM.pK`` for each of ``members``."""
     ctx = click.get_current_context(silent=True)
     if ctx is None:
         return
-    outputs = {p.resolve() for p in (*artifact_paths(stem), *extra)}
+    outputs = files_written(stem, members) | {real_path(p) for p in extra}
+    own = {real_path(p) for p in (*artifact_paths(stem), *extra)}
     for param in ctx.command.params:
         # outputs are not inputs: -o, and options named for what they write (--reference-out)
         if not isinstance(param.type, click.Path) or isinstance(param.type, OutputPath) \
@@ -103,21 +101,52 @@ def check_not_input(stem: Path, *extra: Path) -> None:
         value = ctx.params.get(param.name)
         values = value if isinstance(value, (list, tuple)) else [value]
         for item in values:
-            if isinstance(item, (str, Path)) and str(item) and \
-                    _written_by_inputs(item) & outputs:
-                name = (param.opts[0] if isinstance(param, click.Option)
-                        else param.human_readable_name)
+            if not (isinstance(item, (str, Path)) and str(item)):
+                continue
+            hit = files_read(item) & outputs
+            if not hit:
+                continue
+            name = (param.opts[0] if isinstance(param, click.Option)
+                    else param.human_readable_name)
+            if hit & own & _named_by(item):
                 raise DgpcError(f"is also an input ({name} {item}); write the output "
                                 "elsewhere (--force never overwrites an input)", source=stem)
+            if hit & _named_by(item):
+                raise DgpcError(f"would remove {_beside(min(hit & _named_by(item)), stem)}, "
+                                f"the input {name} {item}: the output there now wrote it (a "
+                                "member of that patch set); write the output elsewhere "
+                                "(--force never touches an input)", source=stem)
+            raise DgpcError(f"would overwrite or remove {_beside(min(hit), stem)}, a file "
+                            f"of the input {name} {item} (a member of that patch set, or a "
+                            "file it records); write the output elsewhere (--force never "
+                            "touches an input)", source=stem)
 
 
-def check_writable(stem: Path, force: bool, *extra: Path) -> None:
+def _beside(path: Path, stem: Path) -> str:
+    """``path`` relative to the folder of the output ``stem`` (POSIX)."""
+    return Path(os.path.relpath(path, real_path(stem).parent)).as_posix()
+
+
+def _named_by(item) -> set[Path]:
+    """The files an input path names itself: the path and, as an artifact stem, its JSON
+    and OBJ (resolved)."""
+    found = {real_path(item)}
+    try:
+        found.update(real_path(p) for p in artifact_paths(item))
+    except DgpcError:
+        pass
+    return found
+
+
+def check_writable(stem: Path, force: bool, *extra: Path, members: tuple[str, ...] = ()
+                   ) -> None:
     """Fail early (before any work) when the output's folder is missing, an output is one of
-    the command's inputs (:func:`check_not_input`), or exists and --force is not given."""
+    the command's inputs (:func:`check_not_input`; ``members``: those of an input patch set,
+    written as ``STEM.pK``), or exists and --force is not given."""
     parent = Path(stem).parent
     if not parent.is_dir():
         raise DgpcError("directory does not exist", source=parent)
-    check_not_input(stem, *extra)
+    check_not_input(stem, *extra, members=members)
     if force:
         return
     for path in (*artifact_paths(stem), *extra):

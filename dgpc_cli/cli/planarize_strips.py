@@ -58,13 +58,14 @@ from dgpc_cli.strips.planarize import (
               help="Template fit: largest angle in degrees between neighbouring rulings (score "
                    "lines); a larger angle lets the strips follow the net more closely.")
 @click.option("--refine", type=RefineParam(), default="auto", show_default=True, metavar="K|auto",
-              help="Rulings per net row, K or auto: K − 1 more between every two rows, their "
-                   "ends on a cubic through the net's geodesics (arc length); the strips follow "
-                   "the net between its rows and their seams meet closer. The parts' rows in "
-                   "unfold stay the net's (refined row t is net row t / K). auto: K = 1, and "
-                   "K = 2 where one template's K = 1 strips miss the deviation (1.5 %) or seam "
-                   "step (1 % of the mean width) target and K = 2 lowers the seam step without "
-                   "raising the deviation (stderr says so; data.parameters.refine_auto).")
+              help="Rulings per net row, K (1 to 16) or auto: K − 1 more between every two rows, "
+                   "their ends on a cubic through the net's geodesics (arc length); the strips "
+                   "follow the net between its rows and their seams meet closer. The parts' "
+                   "rows in unfold stay the net's (refined row t is net row t / K). auto: "
+                   "K = 1, and K = 2 where one template's K = 1 strips miss the deviation "
+                   "(1.5 %) or seam step (1 % of the mean width) target and K = 2 lowers the "
+                   "seam step without raising the deviation (stderr says so; "
+                   "data.parameters.refine_auto).")
 @accept_status_opt
 @output_opt
 @force_opt

@@ -12,6 +12,7 @@ from typing import Any
 
 from .. import __version__
 from ..errors import DgpcError
+from .bounded_read import read_regular
 from .journal import finish_interrupted
 from .jsonable import load_schema, read_json, schema_exists, to_jsonable, validate
 
@@ -67,10 +68,7 @@ def sha256_bytes(data: bytes) -> str:
 
 def sha256_file(path: str | Path) -> str:
     """Hex sha256 of a file's bytes; DgpcError naming the file if it cannot be read."""
-    try:
-        return sha256_bytes(Path(path).read_bytes())
-    except OSError as e:
-        raise DgpcError(f"cannot read: {e.strerror or e}", source=path) from None
+    return sha256_bytes(read_regular(path))
 
 
 def file_input(path: str | Path, relative_to: str | Path) -> dict[str, str]:
@@ -128,9 +126,9 @@ def listed_path(text: Any, json_path: str | Path, field: str) -> Path:
     if ".." in posix.parts or ".." in windows.parts:
         raise DgpcError(f"{field}: {text!r} leads out of the artifact's folder ('..'); the "
                         "files an artifact lists lie in its own folder", source=json_path)
-    folder = Path(json_path).resolve().parent
+    folder = Path(os.path.realpath(json_path)).parent
     path = folder / posix
-    if not path.resolve().is_relative_to(folder):
+    if not Path(os.path.realpath(path)).is_relative_to(folder):   # a loop stays: read says
         raise DgpcError(f"{field}: {text!r} is a symbolic link that leads out of the "
                         "artifact's folder; the files an artifact lists lie in its own folder",
                         source=json_path)
@@ -190,13 +188,10 @@ def read_listed(path: Path, sha256: str, json_path: Path, field: str) -> bytes:
     """The bytes of a file an artifact lists (its OBJ, DXF, CSV ...), checked against the sha256
     the JSON records under ``field``; DgpcError naming the file when missing or edited."""
     path = Path(path)
-    try:
-        data = path.read_bytes()
-    except FileNotFoundError:
+    if not path.exists() and not path.is_symlink():
         raise DgpcError(f"missing; {Path(json_path).name} needs it beside it ({field})",
-                        source=path) from None
-    except OSError as e:
-        raise DgpcError(f"cannot read: {e.strerror or e}", source=path) from None
+                        source=path)
+    data = read_regular(path, f"the file {field} names")
     if sha256_bytes(data) != sha256:
         raise ListedFileChanged(f"does not match {Path(json_path).name} (edited separately?): "
                                 f"its sha256 differs from {field}", source=path)
@@ -239,13 +234,20 @@ def listed_files(json_path: str | Path) -> list[Path]:
     """
     json_path = Path(json_path)
     try:
-        doc = json.loads(json_path.read_bytes())
-    except (OSError, ValueError, RecursionError):
+        return listed_in(json.loads(read_regular(json_path)), json_path)
+    except (DgpcError, ValueError, RecursionError):
         return []
+
+
+def listed_in(doc: Any, json_path: str | Path) -> list[Path]:
+    """:func:`listed_files` of the parsed JSON ``doc`` of the artifact ``json_path``."""
+    json_path = Path(json_path)
     data = doc.get("data") if isinstance(doc, dict) else None
     if not isinstance(data, dict) or doc.get("kind") not in KINDS:
         return []
-    names = [data.get("obj"), data.get("cut_list"), (data.get("rhino_3dm") or {}).get("path")]
+    rhino = data.get("rhino_3dm")
+    names = [data.get("obj"), data.get("cut_list"),
+             rhino.get("path") if isinstance(rhino, dict) else None]
     files = data.get("files")
     if isinstance(files, dict):
         names += [r.get("path") for r in files.values() if isinstance(r, dict)]
@@ -253,6 +255,58 @@ def listed_files(json_path: str | Path) -> list[Path]:
     return [json_path.parent / n for n in names
             if isinstance(n, str) and "/" not in n and "\\" not in n and n.startswith(prefix)
             and n != json_path.name]
+
+
+def recorded_sha256s(doc: Any) -> dict[str, str]:
+    """Every ``path → sha256`` an artifact's JSON ``doc`` records in ``data`` (the files it
+    wrote, and the references it read there): the ``{"path", "sha256"}`` records and the
+    ``KEY``/``KEY_sha256`` pairs (``obj`` and ``obj_sha256``), paths as written (relative to
+    the artifact's folder)."""
+    found: dict[str, str] = {}
+
+    def walk(node, depth=0):
+        if depth > 8:
+            return
+        if isinstance(node, dict):
+            if isinstance(node.get("path"), str) and isinstance(node.get("sha256"), str):
+                found.setdefault(node["path"], node["sha256"])
+            for key, value in node.items():
+                pair = node.get(f"{key}_sha256")
+                if isinstance(value, str) and isinstance(pair, str):
+                    found.setdefault(value, pair)
+                walk(value, depth + 1)
+        elif isinstance(node, list):
+            for value in node:
+                walk(value, depth + 1)
+
+    if isinstance(doc, dict):
+        walk(doc.get("data"))
+    return found
+
+
+def holds_as_written(path: str | Path, recorded: dict[str, str], name: str) -> bool:
+    """Whether the file ``path`` exists and its bytes have the sha256 ``recorded`` for
+    ``name`` (so it is still the file that recorded it was written with)."""
+    sha256 = recorded.get(name)
+    if sha256 is None or not Path(path).is_file():
+        return False
+    try:
+        return sha256_file(path) == sha256
+    except DgpcError:
+        return False
+
+
+def owned_files(json_path: str | Path) -> list[Path]:
+    """The files of :func:`listed_files` that still hold the bytes the JSON records for them
+    (its sha256): the files the artifact wrote, which ``--force`` may remove. A file listed
+    without a sha256, or changed since, is not the artifact's to remove."""
+    json_path = Path(json_path)
+    try:
+        doc = json.loads(read_regular(json_path))
+    except (DgpcError, ValueError, RecursionError):
+        return []
+    recorded = recorded_sha256s(doc)
+    return [p for p in listed_in(doc, json_path) if holds_as_written(p, recorded, p.name)]
 
 
 def artifact_paths(stem: str | Path) -> tuple[Path, Path]:

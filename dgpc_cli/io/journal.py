@@ -171,16 +171,35 @@ def _replay(journal: Path) -> None:
     log.info("%s: finished a write that was interrupted after its commit", journal.parent)
 
 
+def enclosing_manifests(manifest: str | Path) -> list[Path]:
+    """The JSONs whose journal may hold a write of ``manifest``: itself and, for a member
+    ``STEM.pK.json`` of a patch set, ``STEM.json`` (every shorter dotted stem of its name),
+    whose one commit writes the set and its members together."""
+    manifest = Path(manifest)
+    parts = manifest.name.split(".")
+    found = [manifest]
+    if manifest.suffix == ".json":
+        found += [manifest.with_name(".".join(parts[:k]) + ".json")
+                  for k in range(len(parts) - 2, 0, -1)]
+    return found
+
+
 def finish_interrupted(manifest: str | Path) -> None:
     """Before reading the artifact ``manifest``: finish a write of it that was interrupted
-    after its commit, so that the reader sees the new set whole (never a mix).
+    after its commit, so that the reader sees the new set whole (never a mix): its own
+    journal's, or that of the patch set it is a member of (:func:`enclosing_manifests`).
 
     A live writer in the middle of its renames is waited for (at most :data:`JOURNAL_WAIT`
-    seconds). Nothing to do, and a single ``stat``, when no journal lies beside it.
+    seconds). Nothing to do, and a ``stat`` per dotted part of its name, when no journal
+    lies beside it.
     """
+    for each in enclosing_manifests(manifest):
+        if journal_path(each).exists():
+            _finish(each)
+
+
+def _finish(manifest: Path) -> None:
     journal = journal_path(manifest)
-    if not journal.exists():
-        return
     deadline = time.monotonic() + JOURNAL_WAIT
     while journal.exists():
         with output_lock(manifest, wait=True) as held:

@@ -15,6 +15,7 @@ from jsonschema import Draft202012Validator
 from jsonschema.exceptions import relevance
 
 from ..errors import DgpcError
+from .bounded_read import read_regular
 
 _JSON_TYPES = {dict: "object", list: "array", str: "string", bool: "boolean",
                int: "integer", float: "number", type(None): "null"}
@@ -71,15 +72,9 @@ def read_json(path: str | Path) -> Any:
     """Parsed content of a JSON file; DgpcError naming the file if it is missing or not JSON."""
     path = Path(path)
     try:
-        text = path.read_bytes().decode("utf-8")
-    except FileNotFoundError:
-        raise DgpcError("no such file", source=path) from None
-    except IsADirectoryError:
-        raise DgpcError("is a directory, expected a JSON file", source=path) from None
+        text = read_regular(path, "a JSON file").decode("utf-8")
     except UnicodeDecodeError:
         raise DgpcError("not a JSON file (not UTF-8 text)", source=path) from None
-    except OSError as e:
-        raise DgpcError(f"cannot read: {e.strerror or e}", source=path) from None
     numbers = _NumberCheck()
     try:
         doc = json.loads(text, parse_float=numbers.float, parse_int=numbers.int,

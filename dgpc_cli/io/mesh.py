@@ -15,6 +15,7 @@ from scipy import sparse
 from scipy.sparse import csgraph
 
 from ..errors import DgpcError
+from .bounded_read import read_regular
 from .coordinates import bad_rows, coordinate_problem
 
 log = logging.getLogger(__name__)
@@ -44,14 +45,8 @@ class ReferenceMesh:
 
 
 def _read(path: Path) -> bytes:
-    try:
-        return path.read_bytes()
-    except FileNotFoundError:
-        raise DgpcError("no such file", source=path) from None
-    except IsADirectoryError:
-        raise DgpcError("is a directory, expected a mesh file", source=path) from None
-    except OSError as e:
-        raise DgpcError(f"cannot read: {e.strerror or e}", source=path) from None
+    """The mesh file's bytes: a regular file of at most 2 GiB (:mod:`.bounded_read`)."""
+    return read_regular(path, "a mesh file")
 
 
 def _plain_obj(data: bytes):
@@ -152,10 +147,13 @@ def clean_mesh(vertices: np.ndarray, faces: np.ndarray):
             np.ascontiguousarray(consistent_winding(mesh.faces), dtype=np.int64))
 
 
-def check_manifold(vertices: np.ndarray, faces: np.ndarray, source) -> None:
+def check_manifold(vertices: np.ndarray, faces: np.ndarray, source,
+                   raw_vertices: np.ndarray | None = None) -> None:
     """DgpcError naming ``source`` unless every edge of ``faces (t, 3)`` (consistently wound)
-    borders at most two faces, in opposite directions: the geodesic tracer needs a manifold,
-    oriented surface."""
+    borders at most two faces, in opposite directions, and no vertex is pinched
+    (:func:`pinched_vertices`): the geodesic tracer needs a manifold, oriented surface.
+    ``raw_vertices``: the vertices as the file lists them, to name a pinched vertex by its
+    index there."""
     faces = np.asarray(faces, dtype=np.int64)
     directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     n = np.int64(faces.max()) + 1 if faces.size else np.int64(1)
@@ -173,6 +171,60 @@ def check_manifold(vertices: np.ndarray, faces: np.ndarray, source) -> None:
         raise DgpcError(f"the mesh cannot be oriented consistently (a Möbius strip?): the "
                         f"edge {_edge(vertices, directed[first], counts)} runs the same way in "
                         "two faces", source=source)
+    pinched = pinched_vertices(faces)
+    if pinched.size:
+        point = vertices[pinched[0]]
+        where = ", ".join(f"{x:g}" for x in point)
+        index = "" if raw_vertices is None else _file_index(raw_vertices, point)
+        more = f" ({pinched.size} such vertices)" if pinched.size > 1 else ""
+        raise DgpcError(f"not a manifold mesh: vertex {index}({where}) is where separate fans "
+                        f"of faces touch (a bow-tie: two boundary loops or sheets meet at one "
+                        f"point){more}; give each fan its own vertex, or remove a fan",
+                        source=source)
+
+
+def _file_index(raw_vertices: np.ndarray, point: np.ndarray) -> str:
+    """``"N "``: the 1-based index in the file of the first vertex at ``point`` (as OBJ
+    counts them), or ``""`` when none matches exactly."""
+    match = np.flatnonzero(np.all(np.asarray(raw_vertices) == point, axis=1))
+    return f"{int(match[0]) + 1} " if match.size else ""
+
+
+def pinched_vertices(faces: np.ndarray) -> np.ndarray:
+    """The vertices (indices, ascending) of ``faces (t, 3)`` where the surface is pinched (a
+    "bow-tie": two fans of faces, or more, meet at the vertex and nowhere else, so that two
+    boundary loops, or two sheets, run through it). ``faces`` must have manifold edges.
+
+    The corners of the faces at each vertex are linked across every edge two faces share
+    there; a vertex whose corners form more than one connected group is pinched. Vectorized:
+    one connected-components pass over the 3t corners."""
+    faces = np.asarray(faces, dtype=np.int64)
+    t = len(faces)
+    if t == 0:
+        return np.zeros(0, dtype=np.int64)
+    directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)        # half-edge h of face h//3
+    n = np.int64(faces.max()) + 1
+    key = np.sort(directed, axis=1)
+    order = np.argsort(key[:, 0] * n + key[:, 1], kind="stable")
+    edge = (key[:, 0] * n + key[:, 1])[order]
+    start = np.flatnonzero(np.r_[True, edge[1:] != edge[:-1]])
+    counts = np.diff(np.r_[start, edge.size])
+    pairs = order[np.repeat(counts, counts) == 2].reshape(-1, 2)  # the two half-edges
+    corner = np.arange(3 * t).reshape(t, 3)                       # corner (face, slot)
+    links = []
+    for end in (0, 1):          # both ends of the shared edge: link the two faces' corners
+        vertex = directed[pairs[:, 0], end]
+        fa, fb = pairs[:, 0] // 3, pairs[:, 1] // 3
+        ca = corner[fa, np.argmax(faces[fa] == vertex[:, None], axis=1)]
+        cb = corner[fb, np.argmax(faces[fb] == vertex[:, None], axis=1)]
+        links.append(np.stack([ca, cb], axis=1))
+    links = np.concatenate(links) if links else np.zeros((0, 2), dtype=np.int64)
+    graph = sparse.coo_matrix((np.ones(len(links)), (links[:, 0], links[:, 1])),
+                              shape=(3 * t, 3 * t))
+    _, label = csgraph.connected_components(graph, directed=False)
+    groups = np.unique(np.stack([faces.ravel(), label], axis=1), axis=0)[:, 0]
+    vertex, fans = np.unique(groups, return_counts=True)
+    return vertex[fans > 1]
 
 
 def _edge(vertices, edges, counts) -> str:
@@ -232,7 +284,7 @@ def load_mesh(path: str | Path, *, pieces: str = "all") -> ReferenceMesh:
                         f"({bad.size} such vertices)", source=path)
     if faces.min() < 0 or faces.max() >= len(vertices):
         raise DgpcError("a face refers to a vertex that does not exist", source=path)
-    n_raw = len(faces)
+    n_raw, raw_vertices = len(faces), vertices
     vertices, faces = clean_mesh(vertices, faces)
     if pieces != "all" and len(faces):
         kept, kept_faces, n_pieces = largest_piece(vertices, faces)
@@ -246,7 +298,7 @@ def load_mesh(path: str | Path, *, pieces: str = "all") -> ReferenceMesh:
     if len(faces) < 2:
         raise DgpcError(f"needs at least 2 non-degenerate faces, has {len(faces)} "
                         f"(of {n_raw} before cleaning)", source=path)
-    check_manifold(vertices, faces, path)
+    check_manifold(vertices, faces, path, raw_vertices)
     log.info("%s: %d vertices, %d faces (%d dropped)", path, len(vertices), len(faces),
              n_raw - len(faces))
     vertices.setflags(write=False)

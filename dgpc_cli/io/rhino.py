@@ -23,14 +23,14 @@ what the object is — class, length, width, sheet, mold piece …):
   ``Panels::net1`` … : per input net a mesh per panel named by its id (with its mold piece).
 
 Object and layer ids are derived from their names (uuid5), so a model holds the same content
-each run; the file bytes still differ between runs because openNURBS stamps the write time into
-the header.
+each run, and the file's bytes depend on that content alone: no write time, no temporary path
+(:mod:`.rhino_archive`).
 """
 
 from __future__ import annotations
 
+import base64
 import json
-import tempfile
 import uuid
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -41,6 +41,7 @@ from ..errors import DgpcError
 from .artifact import artifact_paths, dumps_json, relative_input, validate_envelope
 from .flat import side_by_side
 from .obj import net_quads
+from .rhino_archive import fixed_times
 from .sheets import transform
 
 if TYPE_CHECKING:
@@ -137,12 +138,17 @@ class Model:
                                      self._attributes(layer, name, info or {}))
 
     def to_bytes(self) -> bytes:
-        """The .3dm bytes (rhino3dm writes to a path only: a temp file, read back)."""
-        with tempfile.TemporaryDirectory(prefix="dgpc-3dm-") as tmp:
-            path = Path(tmp) / "model.3dm"
-            if not self.file.Write(str(path), ARCHIVE_VERSION):
-                raise DgpcError("rhino3dm could not write the model", source=path)
-            return path.read_bytes()
+        """The .3dm bytes, which depend on the model alone: written to memory (an archive
+        written to a file records its path) with fixed revision times
+        (:func:`~dgpc_cli.io.rhino_archive.fixed_times`)."""
+        options = self._rh.File3dmWriteOptions()
+        options.Version = ARCHIVE_VERSION
+        try:
+            blob = base64.b64decode(self.file.Encode(options), validate=True)
+        except (ValueError, RuntimeError) as e:
+            raise DgpcError(f"rhino3dm could not write the model ({e})",
+                            source="--format 3dm") from None
+        return fixed_times(blob)
 
 
 def _text(value) -> str:

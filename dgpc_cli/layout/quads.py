@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.bounded_read import read_regular
 from dgpc_cli.io.coordinates import bad_rows, coordinate_problem
 from dgpc_cli.io.net import NetArtifact
 from dgpc_cli.io.obj import count_lines
@@ -24,12 +25,7 @@ def read_quad_obj(path: Path) -> tuple[np.ndarray, np.ndarray]:
     file for anything that is not a pure quad mesh."""
     if path.suffix.lower() != ".obj":
         raise DgpcError(f"--from-quads reads OBJ files, not '{path.suffix}'", source=path)
-    try:
-        text = path.read_bytes()
-    except FileNotFoundError:
-        raise DgpcError("no such file", source=path) from None
-    except OSError as e:
-        raise DgpcError(f"cannot read: {e.strerror or e}", source=path) from None
+    text = read_regular(path, "a quad OBJ file")
     if b"\0" in text:
         raise DgpcError("not an OBJ file: binary data", source=path)
     # a quad net has about as many faces as vertices: count both before parsing

@@ -9,6 +9,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from dgpc_cli.errors import DgpcError
 from dgpc_cli.fitting.soundness import require_sound_net
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
@@ -93,14 +94,20 @@ def run_extract_mold(nets: list[Path], output: Path, opts: MoldOptions, *, force
     ``check_units(unit, source)`` checks the nets' unit against the one the user expects
     (raising where they differ); a ``--mold-max-length`` that breaks the rule of every
     length raises :class:`~dgpc_cli.errors.OptionSlip` (nothing is written);
-    ``chosen(line)`` is given the one line saying which surface of revolution the mold is;
-    ``written(json_path)`` is called once the files are written."""
+    ``chosen(line)`` is given, once written, the one line saying which surface of revolution
+    the mold is (so that an error before is one line alone); ``written(json_path)`` is called
+    at the commit of the files (nothing is written when it fails)."""
     tol = opts.tol if opts.tol is not None else DEFAULT_TOL_FACTOR * opts.max_strain
     loaded = [(str(artifact_paths(stem)[0]), read_net(stem)) for stem in nets]
     carried = check_inputs([(f"net{k + 1}", name, net.status)
                             for k, (name, net) in enumerate(loaded)], "extract-mold",
                            opts.accept_status)
     for name, net in loaded:
+        if net.shape[1] < 3 and opts.lam in (None, "design") \
+                and opts.segments is None:   # one strip: no turn to measure, N = n − 1 < 2
+            raise DgpcError(f"the net is {net.shape[0]} x {net.shape[1]}: one strip has no "
+                            "turn to find the surface of revolution from (a mold needs at "
+                            "least 3 columns, or --lambda or --segments given)", source=name)
         require_sound_net(net.f, name)
     unit = same_units([(name, net.units) for name, net in loaded])
     check_units(unit, loaded[0][0])
@@ -111,12 +118,11 @@ def run_extract_mold(nets: list[Path], output: Path, opts: MoldOptions, *, force
                         lam=opts.lam, panel_size=opts.panel_size, flat_tol=opts.flat_tol,
                         max_length=max_length, tol=tol, max_strain=opts.max_strain)
     check_max_length(mold, given, unit)
-    chosen(mold.choice_line(unit))
     metrics = mold.metrics()
     files = _files(output, opts, mold, metrics, loaded, unit, tol, max_length, carried)
-    write_files(with_3dm(files, output, fmt), force=force)
     json_path = mold_paths(output)["json"]
-    written(json_path)
+    write_files(with_3dm(files, output, fmt), force=force, announce=lambda: written(json_path))
+    chosen(mold.choice_line(unit))      # once written: an error before it is one line alone
     mer = mold.meridian
     log.info("%s: N = %.6g (λ = %.6g), %d mold pieces, %d curved and %d flat panels, isometry "
              "error ≤ %.3g", json_path, mer.segments, mer.lam, metrics["pieces"],

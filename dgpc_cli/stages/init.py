@@ -24,7 +24,7 @@ import numpy as np
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths, file_input, relative_input
-from dgpc_cli.io.atomic import write_files
+from dgpc_cli.io.atomic import held_writes, write_files
 from dgpc_cli.io.mesh import ReferenceMesh, write_mesh_obj
 from dgpc_cli.io.net import NetArtifact, net_files
 from dgpc_cli.io.patch_set import is_patch_set, member_files, previous_files
@@ -469,14 +469,17 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
               extend: float | None = None, patches=None, status: Status = nullcontext,
               say: Callable[[str], None] | None = None,
               strip_width: float | None = None,
-              check_lengths: Callable[[float], None] | None = None) -> list[Path]:
+              check_lengths: Callable[[float], None] | None = None,
+              written: Callable[[Path], None] = lambda path: None) -> list[Path]:
     """Make and write the nets of ``dgpc init`` (its options checked and their lengths in
     ``units``; ``strip_width``: ``--strip-width``, None when not given: on a mesh the default
     of ``layout.width`` where ``init`` chooses the columns); the JSON paths written.
     ``check(stem, force, *extra)`` refuses a patch net's target before any is written;
     ``status`` makes the status line of the geodesic search; ``say``, when given, gets the
     stderr lines that say what was made; ``check_lengths(diagonal)`` judges the lengths given
-    against a mesh's size (:func:`mesh_net`)."""
+    against a mesh's size (:func:`mesh_net`); ``written(json_path)`` prints each JSON path at
+    the commit (nothing is written when it fails). The nets of patches and their set are
+    written in one commit."""
     json_path, _ = artifact_paths(output)
     folder = json_path.resolve().parent
     files = {}
@@ -507,23 +510,30 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
                 say(f"init: {made.poor}: trying --patches auto (one net each where one net's "
                     "strips vary in width more than 3x; --patches 1 keeps one net)")
         if patches is not None:
-            written = patch_nets(net, mesh, patches, output,
-                                 {"method": method, "base": base, "direction": direction,
-                                  "angle": angle, "rows": rows, "cols": cols,
-                                  "spacing": spacing,
-                                  "extend": net.parameters.get("extend", 0.0),
-                                  "given_extend": extend,
-                                  "largest_component": largest_component,
-                                  "strip_width": strip_width,
-                                  "strip_width_given": given_width, "units": units},
-                                 units=units, fmt=fmt, force=force, check=check, say=say,
-                                 switched=switched)
-            if written:
-                return [*written, write_patch_set(
-                    output, "init", [{"name": f"p{k}", "kind": "net", "json": j,
-                                      "exit_code": 0,
-                                      "files": member_files(j, (_patch_mesh(j),))}
-                                     for k, j in enumerate(written, start=1)], force=force)]
+            said: list[str] = []            # what the patches' nets were: once written
+            with held_writes() as held:
+                nets = patch_nets(net, mesh, patches, output,
+                                  {"method": method, "base": base, "direction": direction,
+                                   "angle": angle, "rows": rows, "cols": cols,
+                                   "spacing": spacing,
+                                   "extend": net.parameters.get("extend", 0.0),
+                                   "given_extend": extend,
+                                   "largest_component": largest_component,
+                                   "strip_width": strip_width,
+                                   "strip_width_given": given_width, "units": units},
+                                  units=units, fmt=fmt, force=force, check=check,
+                                  say=None if say is None else said.append,
+                                  switched=switched)
+            if nets:
+                members = [{"name": f"p{k}", "kind": "net", "json": j, "exit_code": 0,
+                            "files": member_files(j, (_patch_mesh(j),), read=held.read)}
+                           for k, j in enumerate(nets, start=1)]
+                write_patch_set(output, "init", members, force=force, held=held,
+                                announce=lambda: [written(j) for j in [*nets, json_path]])
+            for line in said:
+                say(line)
+            if nets:
+                return [*nets, json_path]
         elif made.poor and say is not None:
             say(f"init: {made.poor}; --patches auto cuts the mesh into patches, one net each, "
                 "where one net's strips vary in width more than 3x")
@@ -551,12 +561,13 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
     net.units = units
     net.parameters["units"] = units
     net.metrics = summarize(net, mesh=mesh)
-    if not units_given and say is not None:
-        say(assumed_units_line(net.f, units))
     files.update(with_3dm(net_files(output, net), output, fmt))
-    # a patch set written here before: its members go (as it lists them)
+    # a patch set written here before: its members go (those it wrote itself)
     write_files(files, force=force,
-                replaces=previous_files(json_path) if is_patch_set(json_path) else ())
+                replaces=previous_files(json_path) if is_patch_set(json_path) else (),
+                announce=lambda: written(json_path))
+    if not units_given and say is not None:     # once written: an error is one line alone
+        say(assumed_units_line(net.f, units))
     return [json_path]
 
 

@@ -51,9 +51,9 @@ def run_laths(net_a: Path, net_b: Path, output: Path, gap: Any, *, force: bool, 
     ``net_b``.
 
     ``gap`` is a :class:`~dgpc_cli.io.length.Length` or None (the default gap).
-    ``written(out_json)`` is called once the files are written. Raises
-    :class:`~dgpc_cli.errors.OptionSlip` (before any work) where the gap breaks the rule of
-    every length (:func:`~dgpc_cli.geodesics.laths.checked_gap`)."""
+    ``written(out_json)`` is called at the commit of the files (nothing is written when it
+    fails). Raises :class:`~dgpc_cli.errors.OptionSlip` (before any work) where the gap breaks
+    the rule of every length (:func:`~dgpc_cli.geodesics.laths.checked_gap`)."""
     a, b, units, carried = _read_pair(net_a, net_b, accept_status)
     gap = crossing_gap(a.f, b.f, checked_gap(a.f, b.f, gap, units))
     laths_a, laths_b, crossings = gridshell(a.f, b.f, gap=gap)
@@ -72,7 +72,6 @@ def run_laths(net_a: Path, net_b: Path, output: Path, gap: Any, *, force: bool, 
     files = laths_files(output, all_laths, crossings, units=units, inputs=inputs,
                         parameters={"gap": gap}, metrics=metrics,
                         status=with_accepted({}, carried))
-    write_files(with_3dm(files, output, fmt), force=force)
+    write_files(with_3dm(files, output, fmt), force=force, announce=lambda: written(json_path))
     log.info("%d laths, %d crossings, largest gap %.3g", len(all_laths), len(crossings.a),
              metrics["crossing_gap_max"])
-    written(json_path)

@@ -79,7 +79,8 @@ def run_nest(stems, output: Path, opts: NestOptions, *, mold_stem: Path | None, 
     ``check(stem, force, *extra)`` refuses the outputs before any is read;
     ``check_units(units, json_path)`` checks the flats' unit against the command's;
     ``progressbar(length, label)`` is a context manager with ``update``;
-    ``written(out_json)`` is called once the files are written."""
+    ``written(out_json)`` is called at the commit of the files (nothing is written when it
+    fails)."""
     stems = with_members(stems)
     json_paths = [artifact_paths(stem)[0] for stem in stems]
     check(output, force, extra_path(output, "parts_csv"),
@@ -136,6 +137,6 @@ def run_nest(stems, output: Path, opts: NestOptions, *, mold_stem: Path | None, 
                                                                mold_stem is not None),
                          metrics=metrics,
                          status=with_accepted({"sheet_count": result.sheet_count,
-                                              "deterministic": opts.engine == "fill"}, carried))
-    write_files(with_3dm(files, output, fmt, parts=flat_parts), force=force)
-    written(out_json)
+                                               "deterministic": opts.engine == "fill"}, carried))
+    write_files(with_3dm(files, output, fmt, parts=flat_parts), force=force,
+                announce=lambda: written(out_json))

@@ -33,10 +33,10 @@ def run_optimize(stem: Path, output: Path, settings: OptimizeSettings, *,
     ``reference``/``no_reference`` and ``weights`` (the ``--weight`` texts) as in
     :func:`~dgpc_cli.stages.optimize_artifact.prepare_optimize`; ``handles`` the handles JSON
     or None. ``solver_progress(label, target)`` is a context manager, the solver's callback.
-    ``written(out_json)`` is called once the net is written. Raises
-    :class:`~dgpc_cli.errors.OptionSlip` (before solving) where the isometric mode has no
-    handles, and :class:`~dgpc_cli.errors.NotConverged` (after writing) where the run falls
-    short."""
+    ``written(out_json)`` is called at the commit of the net (nothing is written when it
+    fails). Raises :class:`~dgpc_cli.errors.OptionSlip` (before solving) where the isometric
+    mode has no handles, and :class:`~dgpc_cli.errors.NotConverged` (after writing) where the
+    run falls short."""
     mode = settings.mode
     json_path, _ = artifact_paths(stem)
     m, n = net_shape(load_envelope(json_path, "net")["data"], json_path)
@@ -57,8 +57,8 @@ def run_optimize(stem: Path, output: Path, settings: OptimizeSettings, *,
         outcome = optimize_prepared(prepared, handle_ids, handle_targets, progress=progress)
     result = optimized_artifact(prepared, outcome, output, handles, handle_ids, handle_targets)
     out_json, _ = artifact_paths(output)
-    write_files(with_3dm(net_files(output, result), output, fmt), force=force)
-    written(out_json)
+    write_files(with_3dm(net_files(output, result), output, fmt), force=force,
+                announce=lambda: written(out_json))
     log.info("%s: %s, %d iterations, R = %.3g", out_json, outcome.status, outcome.iterations,
              result.metrics["R"])
     if not outcome.converged:

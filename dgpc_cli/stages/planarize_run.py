@@ -220,9 +220,9 @@ def run_planarize_strips(stem: Path, output: Path, opts: PlanarizeOptions, *, fo
     ``opts.refine`` None is ``--refine auto``: K = 1, and K = 2 where one template's K = 1
     strips miss the deviation or seam-step target and K = 2 does better
     (:func:`_auto_refine`). ``progressbar(length, label)`` is a context manager with
-    ``update``; ``written(out_json)`` is called once the files are written, before the
-    warnings. Raises NotConverged (after writing) where a polish did not converge or rulings
-    cross."""
+    ``update``; ``written(out_json)`` is called at the commit of the files (nothing is
+    written when it fails), before the warnings. Raises NotConverged (after writing) where a
+    polish did not converge or rulings cross."""
     json_path, _ = artifact_paths(stem)
     net = read_net(stem)
     carried = check_inputs([("net", json_path, net.status)], "planarize-strips",
@@ -238,8 +238,8 @@ def run_planarize_strips(stem: Path, output: Path, opts: PlanarizeOptions, *, fo
     failed, crossed = art.status["polish_not_converged"], art.status["rulings_cross"]
     for note in done.notes:
         log.warning("%s", note)
-    write_files(with_3dm(strips_files(output, art), output, fmt), force=force)
-    written(out_json)
+    write_files(with_3dm(strips_files(output, art), output, fmt), force=force,
+                announce=lambda: written(out_json))
     for note in fabrication_warnings(art.metrics["fabrication"]):
         log.warning("%s: %s", out_json, note)
     log.info("%s: %d strips, max planarity %.3g of the diagonal, max deviation %.3g of the "

@@ -16,13 +16,13 @@ from dgpc_cli.stages.report import overview_files, previous_report_files, report
 def run_report(stems: Sequence[Path], output: Path, *, force: bool,
                written: Callable[[Path], None]) -> None:
     """Write the report of the artifacts ``stems`` under the prefix ``output``, replacing
-    an earlier report there; ``written(path)`` is called per file written, the index last."""
+    an earlier report there; ``written(path)`` is called per file at their commit, the index
+    last (nothing is written when it fails)."""
     json_paths = [artifact_paths(stem)[0] for stem in with_members(stems)]
     kinds = [artifact_kind(p) for p in json_paths]
     if len(json_paths) == 1:
         files = report_files(json_paths[0], kinds[0], output)
     else:
         files = overview_files(list(zip(json_paths, kinds, strict=True)), output)
-    write_files(files, force=force, replaces=previous_report_files(output))
-    for p in files:
-        written(p)
+    write_files(files, force=force, replaces=previous_report_files(output),
+                announce=lambda: [written(p) for p in files])

@@ -64,9 +64,9 @@ def run_unfold(stem: Path, output: Path, opts: UnfoldOptions, *, force: bool, fm
     """Unfold the strips artifact ``stem`` into the flat artifact ``output``.
 
     The strips are developed in mm and the records written in the strips' unit.
-    ``written(out_json)`` is called once the files are written. Raises
-    :class:`~dgpc_cli.errors.OptionSlip` (before any work) where a length breaks the rule of
-    every length (:func:`~dgpc_cli.stages.unfold.checked_lengths`)."""
+    ``written(out_json)`` is called at the commit of the files (nothing is written when it
+    fails). Raises :class:`~dgpc_cli.errors.OptionSlip` (before any work) where a length
+    breaks the rule of every length (:func:`~dgpc_cli.stages.unfold.checked_lengths`)."""
     strips, json_path, carried = _read_sound(stem, opts.accept_status)
     units = strips.units                 # computed in mm (dgpc_cli.io.units)
     stock_length, stagger, congruence_tol = opts.stock_length, opts.stagger, opts.congruence_tol
@@ -105,5 +105,5 @@ def run_unfold(stem: Path, output: Path, opts: UnfoldOptions, *, force: bool, fm
         inputs={"strips": file_input(json_path, out_json.resolve().parent)},
         metrics=flat_metrics(parts, classes, units),
         status=with_accepted({"n_classes": len(classes)}, carried))
-    write_files(with_3dm(flat_files(output, art), output, fmt), force=force)
-    written(out_json)
+    write_files(with_3dm(flat_files(output, art), output, fmt), force=force,
+                announce=lambda: written(out_json))

@@ -13,6 +13,7 @@ is rejected.
 from __future__ import annotations
 
 import csv
+import stat
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
@@ -184,6 +185,10 @@ def builtin_profile(name: str) -> Profile:
 
 # CSV profiles -----------------------------------------------------------------------------------
 
+#: The largest profile CSV read (64 MiB: millions of rows, far more than a profile needs).
+MAX_PROFILE_BYTES = 64 * 1024**2
+
+
 def read_profile_csv(path: str | Path) -> Profile:
     """A profile from a CSV file with a header naming the columns ``r`` and ``h`` (any order).
 
@@ -192,6 +197,16 @@ def read_profile_csv(path: str | Path) -> Profile:
     file's, the header being line 1). The profile is named by the path as given.
     """
     path = Path(path)
+    try:
+        info = path.stat()
+    except OSError:
+        info = None                     # read_text below says why
+    if info is not None and not stat.S_ISDIR(info.st_mode) and \
+            (not stat.S_ISREG(info.st_mode) or info.st_size > MAX_PROFILE_BYTES):
+        raise DgpcError("is not a regular file (a device, a pipe or a socket), expected a "
+                        "profile CSV file" if not stat.S_ISREG(info.st_mode) else
+                        f"is {info.st_size} bytes, more than a profile CSV file may be "
+                        f"({MAX_PROFILE_BYTES})", path)
     try:
         text = path.read_text(encoding="utf-8-sig")
     except FileNotFoundError:
