@@ -97,7 +97,7 @@ def test_a_lock_this_user_cannot_open_is_a_refusal(tmp_path, monkeypatch):
     ["planarize-strips", "{net}", "-o", "{net}", "--force"],
     ["planarize-strips", "{net}.json", "-o", "{net}", "--force"],
     ["unfold", "{strips}", "-o", "{strips}", "--force"],
-    ["nest", "{flat}", "--sheet", "7x5", "-o", "{flat}.json", "--force"],
+    ["nest", "{flat}", "--sheet", "7000x5000", "-o", "{flat}.json", "--force"],
     ["extract-mold", "{net}", "{other}", "-o", "{other}", "--force"],
     ["laths", "{net}", "{other}", "-o", "{net}", "--force"],
     ["optimize", "{net}", "--mode", "isometric", "--handles", "{net}.json", "-o", "{net}",
@@ -224,7 +224,7 @@ def test_a_bow_tie_outline_is_one_line(chain, tmp_path):
 
     edit_json(flat, bow_tie)
     one_line_error(dgpc("inspect", flat, expect=None), "data.parts[0]", "crosses itself")
-    one_line_error(dgpc("nest", flat, "--sheet", "7x5", "-o", tmp_path / "sheets",
+    one_line_error(dgpc("nest", flat, "--sheet", "7000x5000", "-o", tmp_path / "sheets",
                         expect=None), "crosses itself")
 
 

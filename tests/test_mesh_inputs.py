@@ -111,7 +111,7 @@ def test_two_triangles(tmp_path):
 @pytest.mark.parametrize("args, words, code", [
     (["--method", "geodesic", "--direction", "0,0,0"], ["--direction", "not all zero"], 2),
     (["--method", "project", "--direction", "1,a,0"], ["--direction"], 2),
-    (["--method", "project", "--direction", "0,0,1", "--edge-length", "100"], ["--edge-length"],
+    (["--method", "project", "--direction", "0,0,1", "--edge-length", "100mm"], ["--edge-length"],
      1),
 ])
 def test_bad_options_exit_2_or_1(tmp_path, args, words, code):
