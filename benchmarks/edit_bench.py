@@ -31,11 +31,11 @@ sys.path.insert(0, str(ROOT / "samples"))
 import generate  # noqa: E402
 
 from dgpc_cli.edit.page import EditPage  # noqa: E402
+from dgpc_cli.fitting.modes import mode_weights  # noqa: E402
 from dgpc_cli.io.drags import read_drags  # noqa: E402
 from dgpc_cli.io.handles import read_handles  # noqa: E402
 from dgpc_cli.stages import edit_session  # noqa: E402
 from dgpc_cli.stages.edit_replay import replay  # noqa: E402
-from dgpc_cli.stages.modes import mode_weights  # noqa: E402
 from dgpc_cli.stages.optimize_artifact import OptimizeSettings, prepare_optimize  # noqa: E402
 
 SIZES = {(21, 13): 0.050, (41, 41): 0.200}

@@ -31,12 +31,12 @@ from pathlib import Path
 
 import numpy as np
 
+from dgpc_cli.fitting.modes import RELAX, SOFT, mode_weights
+from dgpc_cli.fitting.optimize import judge, optimize_net
 from dgpc_cli.io.net import read_net
 from dgpc_cli.metrics.crease import crease
 from dgpc_cli.metrics.residuals import gpc_angle_defect
 from dgpc_cli.metrics.strain import strain
-from dgpc_cli.stages.modes import RELAX, SOFT, mode_weights
-from dgpc_cli.stages.optimize import judge, optimize_net
 from dgpc_cli.tolerances import tol as TOL
 
 PUSH, STEPS, CREASE, PAPER_STRAIN = 0.05, 5, 0.05, 4e-5

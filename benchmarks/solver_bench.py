@@ -26,9 +26,9 @@ import numpy as np
 from dgpc_cli.core.layout import NetLayout
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.core.solver.linear import available_backends
+from dgpc_cli.fitting.modes import RELAX, SOFT, mode_weights
+from dgpc_cli.fitting.optimize import optimize_net
 from dgpc_cli.stages.init import REFERENCE_MARGIN
-from dgpc_cli.stages.modes import RELAX, SOFT, mode_weights
-from dgpc_cli.stages.optimize import optimize_net
 from dgpc_cli.surfaces.minding import minding_bend
 from dgpc_cli.surfaces.profiles import builtin_profile
 from dgpc_cli.surfaces.revolution import extended, revolution_mesh, revolution_net

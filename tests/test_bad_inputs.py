@@ -474,7 +474,7 @@ def test_optimize_and_from_quads_beyond_the_memory_limit_are_refused(sample, tmp
 
 
 def test_the_memory_limit():
-    from dgpc_cli.stages.net_size import MAX_NET_BYTES, check_net_size
+    from dgpc_cli.layout.net_size import MAX_NET_BYTES, check_net_size
 
     check_net_size(1448, 1448, "--rows/--cols", "")
     for m, n in ((1449, 1448), (float("inf"), 3), (1e300, 1e300)):

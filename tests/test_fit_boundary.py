@@ -11,9 +11,9 @@ import pytest
 from cli_helpers import dgpc, metrics
 
 from dgpc_cli.core.reference import ReferenceSurface
+from dgpc_cli.fitting.optimize import boundary_vertices
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import read_net
-from dgpc_cli.stages.optimize import boundary_vertices
 
 FELT = Path(__file__).resolve().parents[1] / "samples" / "meshes" / "felt.obj"
 

@@ -9,7 +9,7 @@ import json
 
 from cli_helpers import dgpc, metrics
 
-from dgpc_cli.stages.optimize import RELEASE_MOVE
+from dgpc_cli.fitting.optimize import RELEASE_MOVE
 
 
 def test_a_fit_stalled_at_the_facets_reaches_the_tolerance(tmp_path):

@@ -9,9 +9,9 @@ import pytest
 from cli_helpers import dgpc, metrics
 
 from dgpc_cli.core.problem import mean_edge_length
+from dgpc_cli.fitting.optimize import OptimizeOutcome, judge
 from dgpc_cli.io.net import read_net, write_net
 from dgpc_cli.metrics.residuals import pleat
-from dgpc_cli.stages.optimize import OptimizeOutcome, judge
 from dgpc_cli.tolerances import tol as TOL
 
 M = N = 21
@@ -184,7 +184,7 @@ def test_a_relaxation_round_that_begins_to_pleat_ends_there(tmp_path):
     tolerance."""
     from pathlib import Path
 
-    from dgpc_cli.stages.optimize import RELAX_ITER
+    from dgpc_cli.fitting.optimize import RELAX_ITER
 
     root = Path(__file__).resolve().parents[1]
     dgpc("init", "--surface", "revolution", "--profile", root / "samples/profiles/gehry.csv",
@@ -238,7 +238,7 @@ def test_an_isometric_push_between_held_corners_leaves_no_crease(sphere):
     row within 0.05 (0.048), converged, the strain what a smooth 21×21 net pays for this push
     (2.9e-4: the paper's 4e-5 is met at 41×41, see the next test; no weighting of (6), the
     guard or the drag's smoothness brings a 21×21 net below 1.2e-4 at crease ≤ 0.05, see
-    ``benchmarks/push_frontier.py`` and ``stages.modes``)."""
+    ``benchmarks/push_frontier.py`` and ``fitting.modes``)."""
     m, move, status = row0_push(sphere, "iso-row0-5", 0.05)
     assert status["state"] == "converged"
     assert m["crease_max"] <= 0.05

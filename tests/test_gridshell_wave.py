@@ -8,10 +8,10 @@ import pytest
 from cli_helpers import dgpc
 from data_files import WAVE
 
+from dgpc_cli.geodesics.laths import Lath, find_crossings
 from dgpc_cli.io.laths import read_cut_list, read_polylines
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import read_net
-from dgpc_cli.stages.laths import Lath, find_crossings
 
 
 @pytest.fixture(scope="module")

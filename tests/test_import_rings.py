@@ -10,7 +10,7 @@ from cli_helpers import dgpc
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.net import read_net
-from dgpc_cli.stages.init_quads import cut_ring, init_from_quads
+from dgpc_cli.layout.quads import cut_ring, init_from_quads
 from dgpc_cli.surfaces.profiles import profile_from_spec
 from dgpc_cli.surfaces.revolution import revolution_net
 

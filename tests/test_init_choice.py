@@ -15,9 +15,9 @@ from dgpc_cli.geodesics.boundary import boundary_curves
 from dgpc_cli.geodesics.extension import extend_mesh, folded_faces
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import read_net
+from dgpc_cli.layout import choice as init_choice
 from dgpc_cli.metrics.degenerate import degeneracies
-from dgpc_cli.stages import init_choice
-from dgpc_cli.stages.planarize import trim_records
+from dgpc_cli.strips.planarize import trim_records
 
 
 @pytest.fixture(scope="module")

@@ -13,7 +13,7 @@ from dgpc_cli.geodesics.section import plane_section, sample_curve
 from dgpc_cli.io.mesh import write_mesh_obj
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.obj import format_net_obj
-from dgpc_cli.stages.init_quads import init_from_quads, quad_grid
+from dgpc_cli.layout.quads import init_from_quads, quad_grid
 from dgpc_cli.surfaces.bent_sheet import bent_sheet
 from dgpc_cli.surfaces.profiles import profile_from_spec
 from dgpc_cli.surfaces.revolution import revolution_mesh

@@ -15,7 +15,7 @@ from patch_meshes import LOBE_OFFSET, LOBES_SIZE, two_lobes, vault
 
 from dgpc_cli.io.mesh import ReferenceMesh, load_mesh
 from dgpc_cli.io.net import read_net
-from dgpc_cli.stages.init_patches import WIDTH_RATIO_LIMIT, width_ratio
+from dgpc_cli.layout.patches import WIDTH_RATIO_LIMIT, width_ratio
 from dgpc_cli.stages.strip_fabrication import fabrication_warnings
 from dgpc_cli.surfaces.patches import cut_length, split
 

@@ -13,8 +13,9 @@ from dgpc_cli.errors import DgpcError
 from dgpc_cli.geodesics.extent import extent_axes
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import read_net
+from dgpc_cli.layout.search import search
 from dgpc_cli.metrics.width_ratio import width_figures
-from dgpc_cli.stages.init_search import search
+from dgpc_cli.stages.init import quick_fitter
 
 OLD_FOUR = ("section 0°", "section 90°", "boundary b1", "boundary b2")
 
@@ -62,7 +63,7 @@ def test_the_spine_wins_over_the_four_old_candidates(arch):
     box's 39 m side, the spine from the arch to the apse, covers over 70 % and is chosen. Kept
     on the mesh at 21 columns (no overhang or size searched), as the old default was."""
     mesh = load_mesh(arch["fine"])
-    found = search(mesh, extend=0.0, cols=21)
+    found = search(mesh, fit=quick_fitter, extend=0.0, cols=21)
     cover = {t.cand.label: t.record.get("coverage", 0.0) for t in found.trials}
     assert set(OLD_FOUR) <= set(cover)
     assert found.chosen.cand.label.startswith("along the")

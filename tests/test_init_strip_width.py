@@ -11,8 +11,8 @@ from cli_helpers import dgpc
 
 from dgpc_cli.io.mesh import write_mesh_obj
 from dgpc_cli.io.net import read_net
+from dgpc_cli.layout.width import MAX_COLS, default_limit, next_cols
 from dgpc_cli.metrics.width_ratio import widest_strip
-from dgpc_cli.stages.init_width import MAX_COLS, default_limit, next_cols
 
 #: The cap's size and its sphere's radius (m): geodesics from the middle section converge
 #: away from it, so its strips are widest there.

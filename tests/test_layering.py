@@ -7,18 +7,20 @@ from pathlib import Path
 import numpy as np
 
 import dgpc_cli
-from dgpc_cli.stages.init_nets import init_nets
+from dgpc_cli.stages.init import init_nets
 
 PACKAGE = Path(dgpc_cli.__file__).parent
 
 
-def cli_imports(source: str) -> list[str]:
-    """The modules of ``dgpc_cli.cli`` that ``source`` imports."""
+def cli_imports(source: str, package: str = "cli") -> list[str]:
+    """The modules of ``dgpc_cli.PACKAGE`` (default: the command line) that ``source``
+    imports."""
     found = []
+    top = f"dgpc_cli.{package}"
     for node in ast.walk(ast.parse(source)):
         names = ([a.name for a in node.names] if isinstance(node, ast.Import)
                  else [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
-        found += [n for n in names if n == "dgpc_cli.cli" or n.startswith("dgpc_cli.cli.")]
+        found += [n for n in names if n == top or n.startswith(top + ".")]
     return found
 
 
@@ -39,6 +41,21 @@ def test_no_package_below_the_command_line_imports_it():
         found = cli_imports(path.read_text(encoding="utf-8"))
         if found:
             upward[str(rel)] = found
+    assert upward == {}
+
+
+def test_the_layout_of_nets_imports_no_stage():
+    """``dgpc_cli.layout`` (laying nets on meshes) sits below the stages: it imports neither
+    them nor anything above them."""
+    assert cli_imports("from dgpc_cli.stages.init import init_nets\n", "stages") == [
+        "dgpc_cli.stages.init"]
+    upward = {}
+    for path in sorted((PACKAGE / "layout").rglob("*.py")):
+        source = path.read_text(encoding="utf-8")
+        found = [m for package in ("stages", "cli", "edit", "batch")
+                 for m in cli_imports(source, package)]
+        if found:
+            upward[path.name] = found
     assert upward == {}
 
 

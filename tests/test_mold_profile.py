@@ -8,6 +8,7 @@ from mold_samples import deform, gehry_profile, sector_net, wavy_profile
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.metrics.curvature import strip_widths
+from dgpc_cli.mold.extract import extract_mold
 from dgpc_cli.mold.panels import (
     block_max,
     cut_pieces,
@@ -24,7 +25,6 @@ from dgpc_cli.mold.profile import (
     mold_grid,
     net_widths,
 )
-from dgpc_cli.stages.extract_mold import extract_mold
 from dgpc_cli.surfaces.minding import minding_bend
 
 

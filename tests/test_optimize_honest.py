@@ -145,8 +145,8 @@ def _flat_grid(m: int, n: int, squeeze_col: int | None = None, to: float = 1.0):
 def test_a_net_inspect_calls_folded_is_never_converged(mode):
     """An edge of 5 % of the mean (above the collapse floor of 1e-3, below inspect's folded
     bound of 10 %) makes the state degenerate, naming the rows and columns."""
+    from dgpc_cli.fitting.optimize import OptimizeOutcome, judge
     from dgpc_cli.metrics.residuals import edge_length_stats
-    from dgpc_cli.stages.optimize import OptimizeOutcome, judge
 
     f = _flat_grid(7, 6, squeeze_col=3, to=0.05)
     assert edge_length_stats(f)["folded"]                 # what inspect reports

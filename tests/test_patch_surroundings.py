@@ -13,7 +13,8 @@ from outline_meshes import arch_roof
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.geodesics.extension import surrounded
 from dgpc_cli.io.mesh import ReferenceMesh, clean_mesh
-from dgpc_cli.stages.init_search import EXTEND_BELOW, search
+from dgpc_cli.layout.search import EXTEND_BELOW, search
+from dgpc_cli.stages.init import quick_fitter
 from dgpc_cli.surfaces.patches import split
 
 
@@ -52,8 +53,8 @@ def test_the_surroundings_are_the_whole_mesh_within_reach_of_the_patch(roof_patc
 
 def test_the_apse_patch_is_clad_only_with_the_overhang_onto_its_surroundings(roof_patches):
     whole, (apse, _) = roof_patches
-    onto_whole = search(apse, cols=21, surroundings=whole)
-    own = search(apse, cols=21)
+    onto_whole = search(apse, fit=quick_fitter, cols=21, surroundings=whole)
+    own = search(apse, fit=quick_fitter, cols=21)
     assert onto_whole.chosen.quick["coverage"] >= EXTEND_BELOW
     assert not onto_whole.chosen.quick["folded"]
     assert onto_whole.chosen.quick["narrowest"] > 0.25

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from dgpc_cli.errors import DgpcError
-from dgpc_cli.stages.soundness import require_sound_strips
+from dgpc_cli.fitting.soundness import require_sound_strips
 from dgpc_cli.strips.crossing import backward, folded_inside, folds
 
 

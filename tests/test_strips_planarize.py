@@ -12,9 +12,9 @@ from dgpc_cli.io.artifact import load_envelope
 from dgpc_cli.io.flat import read_flat
 from dgpc_cli.io.net import NetArtifact, read_net, write_net
 from dgpc_cli.io.strips import read_strips
-from dgpc_cli.stages.planarize import parse_strip_range, planarize_strips
 from dgpc_cli.strips.congruence import kabsch
 from dgpc_cli.strips.develop import develop_strip
+from dgpc_cli.strips.planarize import parse_strip_range, planarize_strips
 from dgpc_cli.surfaces.minding import minding_bend
 
 SPAN = 120.0

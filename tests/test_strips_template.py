@@ -12,10 +12,10 @@ from cli_helpers import add_noise, dgpc
 from dgpc_cli.io.net import NetArtifact, read_net, write_net
 from dgpc_cli.io.strips import read_strips
 from dgpc_cli.io.units import from_mm
-from dgpc_cli.stages.planarize import planarize_strips, template_strips
 from dgpc_cli.strips.congruence import align
 from dgpc_cli.strips.develop import develop_strip
 from dgpc_cli.strips.fabrication import polyline_foot, ruling_angles
+from dgpc_cli.strips.planarize import planarize_strips, template_strips
 from dgpc_cli.strips.quality import deviation, planarity_defect
 from dgpc_cli.strips.template import (
     VARIANTS,

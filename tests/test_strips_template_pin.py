@@ -12,10 +12,10 @@ from cli_helpers import dgpc
 
 from dgpc_cli.core.constraints.template import chebyshev_basis
 from dgpc_cli.io.net import read_net
-from dgpc_cli.stages.planarize import planarize_strips, template_qualifies, template_strips
 from dgpc_cli.strips.congruence import align
 from dgpc_cli.strips.develop import develop_strip
 from dgpc_cli.strips.fabrication import ruling_angles
+from dgpc_cli.strips.planarize import planarize_strips, template_qualifies, template_strips
 from dgpc_cli.strips.quality import planarity_defect
 from dgpc_cli.strips.template import (
     OUTLINE_DEGREE,

@@ -12,12 +12,12 @@ from shapely.geometry import LineString, Point
 
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.errors import DgpcError
-from dgpc_cli.stages.planarize import trim_records
-from dgpc_cli.stages.soundness import require_sound_strips
+from dgpc_cli.fitting.soundness import require_sound_strips
 from dgpc_cli.stages.unfold import part_narrowness
 from dgpc_cli.strips.boards import split_run
 from dgpc_cli.strips.develop import develop_strip, signed_area
 from dgpc_cli.strips.pinch import PINCH, row_widths, unpinched, widest_section
+from dgpc_cli.strips.planarize import trim_records
 from dgpc_cli.strips.trim import developed_part, part_area, through_rows, trim_strip
 
 

@@ -12,13 +12,13 @@ from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.options import check_writable, force_opt, output_opt
 from dgpc_cli.core.solver.linear import BACKENDS
 from dgpc_cli.errors import NotConverged
+from dgpc_cli.fitting.modes import mode_weights
 from dgpc_cli.io.artifact import artifact_paths
 from dgpc_cli.io.drags import read_drags
 from dgpc_cli.io.handles import read_handles
 from dgpc_cli.stages.edit_live import LiveSolver, Request
 from dgpc_cli.stages.edit_replay import replay, write_log
 from dgpc_cli.stages.edit_session import EditSession, handles_file
-from dgpc_cli.stages.modes import mode_weights
 from dgpc_cli.stages.optimize_artifact import OptimizeSettings, prepare_optimize
 from dgpc_cli.tolerances import tol as TOL
 

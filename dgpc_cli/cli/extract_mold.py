@@ -21,7 +21,7 @@ from dgpc_cli.cli.options import (
 )
 from dgpc_cli.errors import OptionSlip
 from dgpc_cli.io.mold import mold_paths
-from dgpc_cli.stages.extract_mold import (
+from dgpc_cli.mold.extract import (
     DEFAULT_FLAT_TOL,
     DEFAULT_MAX_STRAIN,
     DEFAULT_PANEL_SIZE,

@@ -21,7 +21,7 @@ from dgpc_cli.cli.options import (
 from dgpc_cli.cli.patch_count import PatchCount
 from dgpc_cli.cli.progress import StatusLine
 from dgpc_cli.io.units import DEFAULT_UNITS, UNIT_MM
-from dgpc_cli.stages.init_nets import init_nets
+from dgpc_cli.stages.init import init_nets
 from dgpc_cli.surfaces.profiles import describe_builtins
 from dgpc_cli.surfaces.revolution import MAX_TWIST
 

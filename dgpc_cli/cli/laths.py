@@ -10,8 +10,8 @@ from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt
 from dgpc_cli.cli.output_path import OutputPath
 from dgpc_cli.errors import OptionSlip
+from dgpc_cli.geodesics.laths import GAP
 from dgpc_cli.io.artifact import artifact_paths
-from dgpc_cli.stages.laths import GAP
 from dgpc_cli.stages.laths_run import run_laths
 
 

@@ -13,7 +13,7 @@ from dgpc_cli.cli.patch_set_members import on_members
 from dgpc_cli.cli.progress import SolverProgress
 from dgpc_cli.core.solver.linear import BACKENDS
 from dgpc_cli.errors import OptionSlip
-from dgpc_cli.stages.modes import MODES, mode_weights
+from dgpc_cli.fitting.modes import MODES, mode_weights
 from dgpc_cli.stages.optimize_artifact import OptimizeSettings
 from dgpc_cli.stages.optimize_run import run_optimize
 from dgpc_cli.tolerances import tol as TOL

@@ -1,5 +1,5 @@
 """The value of ``dgpc init --patches``: ``auto`` or a number of patches (the nets:
-``stages.init_patch_nets``)."""
+``stages.init``)."""
 
 from __future__ import annotations
 

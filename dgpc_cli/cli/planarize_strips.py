@@ -10,13 +10,13 @@ from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt, progressbar
 from dgpc_cli.cli.patch_set_members import on_members
 from dgpc_cli.cli.refine_option import RefineParam
-from dgpc_cli.stages.planarize import (
+from dgpc_cli.stages.planarize_run import PlanarizeOptions, run_planarize_strips
+from dgpc_cli.strips.planarize import (
     FLAT_ANGLE,
     MAX_RULING_TURN,
     RULING_FAIRNESS,
     SEAM_WEIGHT,
 )
-from dgpc_cli.stages.planarize_run import PlanarizeOptions, run_planarize_strips
 
 
 @click.command("planarize-strips", short_help="Make every geodesic strip a strip of planar quads.")

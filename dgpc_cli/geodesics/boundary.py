@@ -4,7 +4,7 @@
 The boundary loops are cut at their corners (where the boundary turns by more than
 :data:`CORNER_ANGLE` within the surface) into curves: a roof with one curved and three straight
 edges has four, a dome cut by a plane two. Each curve is oriented with the mesh on its right,
-so that the u-direction ``t × n`` of a base point (see ``stages.init_mesh``) points into the
+so that the u-direction ``t × n`` of a base point (see ``layout.grids``) points into the
 mesh, and named ``b1, b2, …`` by decreasing length.
 """
 

@@ -47,6 +47,7 @@ from ezdxf import units
 from ezdxf.enums import TextEntityAlignment
 
 from ..errors import DgpcError
+from .stroke_font import BOX_ABOVE, BOX_BELOW, CHAR_WIDTH, stroke_lines
 from .units import nice_length
 
 
@@ -67,9 +68,6 @@ SHEET_LAYERS = {"SHEET_BORDER": Layer(8, closed_only=True), "CUT": Layer(1, clos
                 "SCORE": Layer(5), "LABEL": Layer(3), "ENGRAVE": Layer(3)}
 #: Points closer than this (mm) are the same point: zero-length and duplicate segments.
 QUANTUM_MM = 1e-6
-#: Text box of :func:`text_box` around a middle-centred text of height h: width per character,
-#: depth below and height above the alignment point, in units of h.
-CHAR_WIDTH, BOX_BELOW, BOX_ABOVE = 1.0, 0.8, 0.6
 #: Text alignments :class:`Text` may have.
 ALIGNMENTS = {"MIDDLE_CENTER": TextEntityAlignment.MIDDLE_CENTER,
               "MIDDLE_LEFT": TextEntityAlignment.MIDDLE_LEFT}
@@ -143,8 +141,6 @@ class Drawing:
                     align: str = "MIDDLE_CENTER") -> None:
         """A text as single-stroke open polylines (:func:`~.stroke_font.stroke_lines`), placed
         like :meth:`text`."""
-        from .stroke_font import stroke_lines
-
         for line in stroke_lines(text, height, at, rotation, align):
             self.polyline(layer, line)
 

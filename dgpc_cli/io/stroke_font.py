@@ -16,10 +16,14 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["FONT", "stroke_lines"]
+__all__ = ["BOX_ABOVE", "BOX_BELOW", "CHAR_WIDTH", "FONT", "stroke_lines"]
 
 #: The Hershey font of the labels: simplex sans-serif, one stroke per line of a letter.
 FONT = "futural"
+#: Text box of a middle-centred text of height h (:func:`dgpc_cli.io.dxf.text_box`, and the box
+#: the strokes are fitted into): width per character, depth below and height above the
+#: alignment point, in units of h.
+CHAR_WIDTH, BOX_BELOW, BOX_ABOVE = 1.0, 0.8, 0.6
 
 
 @lru_cache(maxsize=1)
@@ -51,8 +55,6 @@ def _glyph_strokes(text: str) -> tuple[list[np.ndarray], float, float]:
 def stroke_lines(text: str, height: float, at, rotation: float = 0.0,
                  align: str = "MIDDLE_CENTER") -> list[np.ndarray]:
     """Open polylines ``(k, 2)`` in drawing units lettering ``text`` (see the module)."""
-    from .dxf import BOX_ABOVE, BOX_BELOW, CHAR_WIDTH
-
     strokes, cap, _ = _glyph_strokes(text)
     if not strokes:
         return []

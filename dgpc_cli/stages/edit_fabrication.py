@@ -7,9 +7,9 @@ import numpy as np
 
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.units import from_mm
-from dgpc_cli.stages.extract_mold import extract_mold
-from dgpc_cli.stages.planarize import planarize_strips
+from dgpc_cli.mold.extract import extract_mold
 from dgpc_cli.stages.unfold import unfold_strips
+from dgpc_cli.strips.planarize import planarize_strips
 
 
 def fabrication_figures(f_mm: np.ndarray, units: str) -> dict:

@@ -19,6 +19,8 @@ import numpy as np
 
 from dgpc_cli.core.solver import guided_projection, predictor_step
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.fitting.modes import SOFT
+from dgpc_cli.fitting.optimize import OptimizeOutcome, judge, net_problem
 from dgpc_cli.io.artifact import artifact_paths
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.handles import handles_bytes
@@ -27,8 +29,6 @@ from dgpc_cli.metrics.crease import creased_vertices
 from dgpc_cli.metrics.residuals import pleat
 from dgpc_cli.metrics.strain import strain
 from dgpc_cli.mold.isometry import panel_errors
-from dgpc_cli.stages.modes import SOFT
-from dgpc_cli.stages.optimize import OptimizeOutcome, judge, net_problem
 from dgpc_cli.stages.optimize_artifact import (
     PreparedNet,
     optimize_prepared,

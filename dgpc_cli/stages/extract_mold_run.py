@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from dgpc_cli.errors import OptionSlip
+from dgpc_cli.fitting.soundness import require_sound_net
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.mold import mold_files, mold_paths
@@ -17,7 +18,7 @@ from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.units import same_units
 from dgpc_cli.mold.dxf import profile_dxf
-from dgpc_cli.stages.extract_mold import (
+from dgpc_cli.mold.extract import (
     DEFAULT_FLAT_TOL,
     DEFAULT_MAX_STRAIN,
     DEFAULT_PANEL_SIZE,
@@ -25,7 +26,6 @@ from dgpc_cli.stages.extract_mold import (
     extract_mold,
     max_length_slip,
 )
-from dgpc_cli.stages.soundness import require_sound_net
 
 log = logging.getLogger(__name__)
 

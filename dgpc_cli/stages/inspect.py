@@ -11,11 +11,11 @@ from dgpc_cli.core.layout import NetLayout
 from dgpc_cli.core.problem import Problem, constraint_error, mean_edge_length
 from dgpc_cli.core.solver import parse_weight
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.fitting.modes import GPC_ONLY, SOFT
 from dgpc_cli.io.artifact import recorded_file, resolve_input
 from dgpc_cli.io.net import NetArtifact
 from dgpc_cli.metrics.summary import net_metrics
 from dgpc_cli.mold.isometry import panel_error_summary
-from dgpc_cli.stages.modes import GPC_ONLY, SOFT
 
 log = logging.getLogger(__name__)
 

@@ -49,7 +49,7 @@ INSPECTORS.update(strips=_inspect_strips, flat=_inspect_flat)
 
 def _inspect_mold(json_path: Path, **_) -> dict:
     from dgpc_cli.io.mold import read_mold
-    from dgpc_cli.stages.extract_mold import inspect_mold
+    from dgpc_cli.mold.extract import inspect_mold
 
     return inspect_mold(read_mold(json_path))
 

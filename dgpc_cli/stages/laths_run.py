@@ -11,14 +11,14 @@ from typing import Any
 import numpy as np
 
 from dgpc_cli.errors import DgpcError, OptionSlip
+from dgpc_cli.fitting.soundness import require_sound_net
+from dgpc_cli.geodesics.laths import crossing_gap, gap_slip, gridshell
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.laths import laths_files
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.units import same_units
-from dgpc_cli.stages.laths import crossing_gap, gap_slip, gridshell
-from dgpc_cli.stages.soundness import require_sound_net
 
 log = logging.getLogger(__name__)
 

@@ -14,14 +14,14 @@ import numpy as np
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.core.solver import Schedule, parse_weight
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.fitting.modes import RELAX, SOFT, describe_weights
+from dgpc_cli.fitting.optimize import OptimizeOutcome, boundary_vertices, judge, optimize_net
+from dgpc_cli.fitting.polish import polish_weights
 from dgpc_cli.io.artifact import artifact_paths, file_input, recorded_file, resolve_input
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import NetArtifact, read_net
 from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.stages.inspect import net_fit_surface, summarize
-from dgpc_cli.stages.modes import RELAX, SOFT, describe_weights
-from dgpc_cli.stages.optimize import OptimizeOutcome, boundary_vertices, judge, optimize_net
-from dgpc_cli.stages.polish import polish_weights
 from dgpc_cli.tolerances import tol as TOL
 
 log = logging.getLogger(__name__)

@@ -13,7 +13,7 @@ from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.handles import read_handles
 from dgpc_cli.io.net import net_files, net_shape
 from dgpc_cli.io.rhino import with_3dm
-from dgpc_cli.stages.net_size import OPTIMIZE_BYTES_PER_VERTEX, check_net_size
+from dgpc_cli.layout.net_size import OPTIMIZE_BYTES_PER_VERTEX, check_net_size
 from dgpc_cli.stages.optimize_artifact import (
     OptimizeSettings,
     optimize_prepared,

@@ -9,12 +9,20 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from dgpc_cli.errors import DgpcError, NotConverged
+from dgpc_cli.fitting.soundness import require_sound_net
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.strips import StripsArtifact, strips_files
-from dgpc_cli.stages.planarize import (
+from dgpc_cli.stages.strip_fabrication import (
+    DEVIATION_WARN,
+    SEAM_STEP_WARN,
+    fabrication_metrics,
+    fabrication_warnings,
+    missed_targets,
+)
+from dgpc_cli.strips.planarize import (
     FLAT_ANGLE,
     MAX_RULING_TURN,
     POLISH_ABOVE,
@@ -28,14 +36,6 @@ from dgpc_cli.stages.planarize import (
     template_qualifies,
     template_strips,
     trim_records,
-)
-from dgpc_cli.stages.soundness import require_sound_net
-from dgpc_cli.stages.strip_fabrication import (
-    DEVIATION_WARN,
-    SEAM_STEP_WARN,
-    fabrication_metrics,
-    fabrication_warnings,
-    missed_targets,
 )
 
 log = logging.getLogger(__name__)

@@ -141,7 +141,7 @@ def inspect_strips(json_path: Path) -> dict:
     from dgpc_cli.core.reference import ReferenceSurface
     from dgpc_cli.io.strips import read_strips
     from dgpc_cli.stages.inspect import recorded_reference
-    from dgpc_cli.stages.planarize import strips_metrics
+    from dgpc_cli.strips.planarize import strips_metrics
 
     art = read_strips(json_path)
     metrics = strips_metrics(art.records, art.units)

@@ -10,13 +10,13 @@ from pathlib import Path
 from typing import Any
 
 from dgpc_cli.errors import OptionSlip
+from dgpc_cli.fitting.soundness import require_sound_strips
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.flat import FlatArtifact, flat_files
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.strips import read_strips
 from dgpc_cli.io.units import mm_per_unit, to_mm
-from dgpc_cli.stages.soundness import require_sound_strips
 from dgpc_cli.stages.unfold import (
     STAGGER_FRACTION,
     flat_metrics,

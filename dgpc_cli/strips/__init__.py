@@ -1,5 +1,7 @@
 """Geodesic strips as fabrication parts (paper §6.2.2, §6.2.4, Fig. 2, 12, 15, 18): rulings and
-planar-quad strips, their polish, their development into the plane and congruence classes."""
+planar-quad strips, their polish, their development into the plane and congruence classes;
+:mod:`.planarize` is ``dgpc planarize-strips``' computation (a net's strips, per strip or one
+template, trimmed to the outline)."""
 
 from __future__ import annotations
 

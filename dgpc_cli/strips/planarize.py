@@ -202,8 +202,8 @@ def template_qualifies(f: np.ndarray, columns: list[int]) -> str | None:
     why not (one line): the net must pass ``extract-mold``'s own check (isometric to a surface
     of revolution: equation (5), every panel on its mold patch) and its strips must be equally
     wide (7) (strips of unequal widths c_j d(u) are not congruent)."""
+    from dgpc_cli.mold.extract import DEFAULT_TOL, extract_mold
     from dgpc_cli.mold.profile import column_factors, net_widths
-    from dgpc_cli.stages.extract_mold import DEFAULT_TOL, extract_mold
 
     try:
         extract_mold([("the net", f)])

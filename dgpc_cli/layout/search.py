@@ -3,7 +3,7 @@ a roof whose best start, fitted, covered 54 % of it, where other options reached
 
 It searches three things the user did not give:
 
-* the base curve (``stages.init_choice.candidates``: a sweep of sections, the boundary curves,
+* the base curve (``layout.choice.candidates``: a sweep of sections, the boundary curves,
   the sections across the longest extents), unless ``--base``, ``--direction`` or ``--angle``
   names one;
 * the overhang, unless ``--extend`` is given or the mesh is closed: when the best candidate
@@ -13,7 +13,7 @@ It searches three things the user did not give:
   :data:`EXTEND_ENOUGH` or more overhang covers no more;
 * the size, unless ``--cols`` or ``--edge-length`` is given: the best net so far made again
   with each of :data:`SIZES` columns, and, where a largest strip width is set
-  (``stages.init_width``), the best net made again with as many more columns as bring its
+  (``layout.width``), the best net made again with as many more columns as bring its
   widest strip within it.
 
 Candidates are ranked after a quick fit: the :data:`FINALISTS` best of each round (by the
@@ -27,6 +27,9 @@ whose widths vary least, within :data:`WIDTH_SLACK`; ties go to the earlier cand
 old default, less overhang, fewer columns). With a largest strip width and the columns
 ``init``'s to choose, the nets within it are ranked first (any net there is). Every candidate
 tried is recorded with its figures.
+
+The quick fit itself is the caller's (:data:`NetFit`: ``stages.init`` runs ``optimize --mode
+fit``'s solver), so that laying nets on meshes stays below the stages.
 """
 
 from __future__ import annotations
@@ -42,10 +45,7 @@ from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.geodesics.extension import continued, largest_unfolded, surrounded
 from dgpc_cli.io.mesh import ReferenceMesh
-from dgpc_cli.metrics.coverage import coverage, default_tolerance
-from dgpc_cli.metrics.degenerate import degeneracies
-from dgpc_cli.metrics.width_ratio import width_figures
-from dgpc_cli.stages.init_choice import (
+from dgpc_cli.layout.choice import (
     COVERAGE_SAMPLES,
     Candidate,
     Outcome,
@@ -54,11 +54,11 @@ from dgpc_cli.stages.init_choice import (
     no_sound_net,
     option,
 )
-from dgpc_cli.stages.init_mesh import DEFAULT_COLS, MeshGrid, MeshTracing
-from dgpc_cli.stages.init_width import widen, widest_on, width_record
-from dgpc_cli.stages.modes import SOFT, mode_weights
-from dgpc_cli.stages.optimize import boundary_vertices, optimize_net
-from dgpc_cli.stages.polish import polish_weights
+from dgpc_cli.layout.grids import DEFAULT_COLS, MeshGrid, MeshTracing
+from dgpc_cli.layout.width import widen, widest_on, width_record
+from dgpc_cli.metrics.coverage import coverage, default_tolerance
+from dgpc_cli.metrics.degenerate import degeneracies
+from dgpc_cli.metrics.width_ratio import width_figures
 
 log = logging.getLogger(__name__)
 
@@ -79,13 +79,20 @@ EXTEND_CANDIDATES = 3
 #: The overhang at the fold limit is tried only when it is at least this much beyond the last
 #: step tried.
 EXTEND_MIN_STEP = 0.02
-#: Columns tried for the best net, besides :data:`~dgpc_cli.stages.init_mesh.DEFAULT_COLS`.
+#: Columns tried for the best net, besides :data:`~dgpc_cli.layout.grids.DEFAULT_COLS`.
 SIZES = (31, 41)
 #: Nets covering within this of the best count as covering as much.
 COVERAGE_SLACK = 0.005
 #: ... and of those, nets whose strip widths vary within this fraction of the least variation
 #: count as varying as little (the earlier candidate wins).
 WIDTH_SLACK = 0.1
+
+
+#: A few iterations of ``optimize --mode fit``: ``fit(f, surface, on_mesh, iterations)`` fits
+#: the net ``f (m, n, 3)`` to ``surface`` (a ``core.reference.ReferenceSurface``; ``on_mesh``:
+#: the net is traced on the mesh itself, no overhang, so its rim is held to the mesh's
+#: boundary) and returns the fitted net and the iterations run; DgpcError when it cannot run.
+NetFit = Callable[[np.ndarray, ReferenceSurface, bool, int], tuple[np.ndarray, int]]
 
 
 @dataclass
@@ -114,7 +121,7 @@ class Trial:
 @dataclass
 class SearchResult:
     """The chosen net, its outcome and overhang, every trial, the search's record and the
-    record of its largest strip width (``stages.init_width.width_record``, None without a
+    record of its largest strip width (``layout.width.width_record``, None without a
     limit); ``narrowed``."""
 
     grid: MeshGrid
@@ -140,28 +147,24 @@ def _on_reference(f: np.ndarray, reference: ReferenceSurface, tolerance: float) 
 
 
 def quick_fit(mesh: ReferenceMesh, surface: ReferenceSurface, grid: MeshGrid,
-              extend: float, iterations: int = QUICK_FIT_ITERATIONS,
+              extend: float, fit: NetFit, iterations: int = QUICK_FIT_ITERATIONS,
               reference: ReferenceSurface | None = None) -> dict:
-    """The figures of the net of ``grid`` after ``iterations`` of ``optimize --mode fit`` to
-    ``surface`` (the mesh, or its continuation for an overhang): ``coverage`` of ``mesh``,
-    ``iterations`` run, ``folded``, ``width_ratio`` and ``narrowest`` (over the reference, see
-    :func:`~dgpc_cli.metrics.width_ratio.width_figures`); ``{"failed": reason}`` when the
-    fit cannot run. ``reference``: ``surface`` of the mesh itself, when made already."""
+    """The figures of the net of ``grid`` after ``iterations`` of ``optimize --mode fit``
+    (``fit``) to ``surface`` (the mesh, or its continuation for an overhang): ``coverage`` of
+    ``mesh``, ``iterations`` run, ``folded``, ``width_ratio`` and ``narrowest`` (over the
+    reference, see :func:`~dgpc_cli.metrics.width_ratio.width_figures`); ``{"failed":
+    reason}`` when the fit cannot run. ``reference``: ``surface`` of the mesh itself, when
+    made already."""
     reference = ReferenceSurface(mesh.vertices, mesh.faces) if reference is None else reference
-    f = grid.net.f
-    weights = polish_weights(f, mode_weights("fit"))
-    rim = (boundary_vertices(f, surface) if not extend and weights["boundary"].end > 0
-           else None)
     try:
-        out = optimize_net(f, weights, reference=surface, boundary_ids=rim, soft=SOFT["fit"],
-                           max_iter=iterations)
+        fitted, done = fit(grid.net.f, surface, not extend, iterations)
     except DgpcError as err:
         return {"failed": err.reason}
-    cov = coverage(out.f, mesh.vertices, mesh.faces, samples=COVERAGE_SAMPLES,
+    cov = coverage(fitted, mesh.vertices, mesh.faces, samples=COVERAGE_SAMPLES,
                    surface=reference)["area_fraction"]
-    widths = width_figures(out.f, _on_reference(out.f, reference,
-                                                default_tolerance(mesh.vertices)))
-    return {"coverage": cov, "iterations": out.iterations, "folded": bool(degeneracies(out.f)),
+    widths = width_figures(fitted, _on_reference(fitted, reference,
+                                                 default_tolerance(mesh.vertices)))
+    return {"coverage": cov, "iterations": done, "folded": bool(degeneracies(fitted)),
             **(widths or {})}
 
 
@@ -209,17 +212,18 @@ def _rank(trials: list[Trial], limit: float | None = None) -> tuple[Trial, str]:
                     f"({chosen.quick.get('width_ratio', math.nan):.2f}× along a strip){note}")
 
 
-def search(mesh: ReferenceMesh, *, base: str | None = None, direction=None,
+def search(mesh: ReferenceMesh, *, fit: NetFit, base: str | None = None, direction=None,
            angle: float | None = None, rows: int | None = None, cols: int | None = None,
            spacing: float | None = None, extend: float | None = None,
            surroundings: ReferenceMesh | None = None,
            progress: Callable[[str], None] | None = None,
            strip_width: float | None = None, strip_width_given: bool = False,
            widen_cols: bool | None = None, defer_width: bool = False) -> SearchResult:
-    """The net ``init --method geodesic`` writes for ``mesh`` (see the module); ``extend``
-    None: searched, else that overhang (``--extend``). ``surroundings``: the whole mesh
-    ``mesh`` is a patch of, which an overhang runs onto
-    (:func:`~dgpc_cli.geodesics.extension.surrounded`) instead of the patch's continuation.
+    """The net ``init --method geodesic`` writes for ``mesh`` (see the module), its candidates
+    ranked after a quick ``fit``; ``extend`` None: searched, else that overhang
+    (``--extend``). ``surroundings``: the whole mesh ``mesh`` is a patch of, which an overhang
+    runs onto (:func:`~dgpc_cli.geodesics.extension.surrounded`) instead of the patch's
+    continuation.
     ``strip_width``: the largest strip width (model unit; None: none), ``strip_width_given``
     whether the user gave it; ``widen_cols``: whether the columns are ``init``'s to choose
     (default: neither ``cols`` nor ``spacing`` given), starting from ``cols``;
@@ -252,7 +256,7 @@ def search(mesh: ReferenceMesh, *, base: str | None = None, direction=None,
                        key=lambda t: -t.outcome.coverage)[:count]
         for t in ready:
             say(f"quick fit of {t.describe()}")
-            t.quick = quick_fit(mesh, domains[t.extend][2], t.outcome.grid, t.extend,
+            t.quick = quick_fit(mesh, domains[t.extend][2], t.outcome.grid, t.extend, fit,
                                 reference=reference)
             t.record["quick_fit"] = t.quick
             if t.scored:
@@ -372,7 +376,7 @@ def _width_step(t: Trial, spacing: float | None = None) -> dict:
 
 
 def _widened(trials, run, finalize, domain_of, size, limit, widen_cols) -> list[dict]:
-    """The steps of the largest strip width (``stages.init_width.widen``): the best trial
+    """The steps of the largest strip width (``layout.width.widen``): the best trial
     (ranked without the limit) and, when ``widen_cols``, the same candidate made again with
     more columns while its widest strip exceeds ``limit``, each with its quick fit."""
     best, _ = _rank(trials)

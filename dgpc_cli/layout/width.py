@@ -27,9 +27,9 @@ import numpy as np
 from dgpc_cli.core.reference import ReferenceSurface
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.units import mm_per_unit
+from dgpc_cli.layout.grids import DEFAULT_COLS
 from dgpc_cli.metrics.coverage import default_tolerance
 from dgpc_cli.metrics.width_ratio import widest_strip
-from dgpc_cli.stages.init_mesh import DEFAULT_COLS
 
 log = logging.getLogger(__name__)
 
@@ -152,7 +152,7 @@ def width_line(record: dict | None, units: str, what: str = "",
 
 def widened_choice(mesh, first: tuple, make: Callable[[int], tuple], cols: int | None,
                    limit: float, given: bool, widen_cols: bool) -> tuple[tuple, dict]:
-    """The choice of ``stages.init_choice.choose`` (``first``: its ``(grid, outcome, tried)``
+    """The choice of ``layout.choice.choose`` (``first``: its ``(grid, outcome, tried)``
     with ``cols`` columns, None: the default) within the largest strip width ``limit`` on
     ``mesh``: when ``widen_cols``, made again by ``make(n)`` (``choose`` with ``n`` columns)
     while too wide (:func:`widen`); the choice kept and its :func:`width_record`."""

@@ -4,7 +4,7 @@ A single net over a lobed roof needs strips whose width varies many times along 
 geodesics fan out over every hill and crowd in every valley: paper §3.1, the Jacobi equation).
 ``--patches K`` cuts the reference into K patches (``surfaces.patches``: along the valleys and
 necks between its lobes, the largest patch bisected until there are K) and makes one net on
-each, by the same choice as a single net (``stages.init_choice``), the patch being its
+each, by the same choice as a single net (``layout.choice``), the patch being its
 reference: ``optimize --mode fit`` fits it to the patch and ``planarize-strips --trim`` clips
 its strips to the patch's outline, cut curves included.
 
@@ -79,7 +79,7 @@ def width_ratio(f: np.ndarray, mesh: ReferenceMesh) -> dict:
 class PatchNet:
     """One patch, the mesh made of it (``mesh.path``: the OBJ it is to be written to) and its
     OBJ bytes, the net made on it, the choice's outcome and candidates, its width ratio, and
-    how to make its net within the largest strip width (``stages.init_width``; None: it is)."""
+    how to make its net within the largest strip width (``layout.width``; None: it is)."""
 
     patch: Patch
     mesh: ReferenceMesh
@@ -92,7 +92,7 @@ class PatchNet:
     narrowed: Callable[[], tuple] | None = None
 
 
-#: Makes a net on a mesh: ``(mesh) -> (grid, outcome, tried, narrowed)`` (``init_choice.choose``
+#: Makes a net on a mesh: ``(mesh) -> (grid, outcome, tried, narrowed)`` (``layout.choice.choose``
 #: or the search with the command's options bound, the mesh continued as ``--extend`` says;
 #: ``narrowed()``: the net within the largest strip width, ``(grid, outcome, tried)``, or None).
 NetMaker = Callable[[ReferenceMesh], tuple]

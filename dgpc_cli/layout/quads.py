@@ -12,9 +12,9 @@ from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.coordinates import bad_rows, coordinate_problem
 from dgpc_cli.io.net import NetArtifact
 from dgpc_cli.io.obj import count_lines
+from dgpc_cli.layout.net_size import check_vertex_count
 from dgpc_cli.metrics.degenerate import GPC_LIMIT, degeneracies
 from dgpc_cli.metrics.residuals import gpc_angle_defect_max
-from dgpc_cli.stages.net_size import check_vertex_count
 
 log = logging.getLogger(__name__)
 

@@ -11,7 +11,7 @@ reference the net covers.
   project``: the grid along the projected principal axis, at 45° to it, and along the chord of
   every boundary curve. An explicit ``--base``/``--direction``/``--angle`` narrows them down
   to one (or, with ``--base boundary``, to the boundary curves). Which one ``init`` keeps,
-  after a quick fit, over which overhang and size, is ``stages.init_search``'s business.
+  after a quick fit, over which overhang and size, is ``layout.search``'s business.
 * Soundness. A candidate net that is degenerate (``metrics.degenerate``: collapsed edges, folded
   or flipped quads, and for traced geodesics a gpc defect above 0.1 rad; a projected grid is not
   gpc yet, ``optimize --mode fit`` makes it so) is made again over the largest rectangle of its
@@ -41,16 +41,16 @@ from dgpc_cli.geodesics.extent import extent_axes
 from dgpc_cli.geodesics.rectangle import largest_rectangle
 from dgpc_cli.geodesics.tracing import plane_axes, principal_frame
 from dgpc_cli.io.mesh import ReferenceMesh
-from dgpc_cli.metrics.coverage import coverage
-from dgpc_cli.metrics.degenerate import GPC_LIMIT, degeneracies
-from dgpc_cli.stages.init_mesh import (
+from dgpc_cli.layout.grids import (
     MeshGrid,
     MeshTracing,
     init_geodesic,
     init_project,
     rotated,
 )
-from dgpc_cli.stages.net_size import NetTooLarge
+from dgpc_cli.layout.net_size import NetTooLarge
+from dgpc_cli.metrics.coverage import coverage
+from dgpc_cli.metrics.degenerate import GPC_LIMIT, degeneracies
 
 log = logging.getLogger(__name__)
 

@@ -73,7 +73,7 @@ SOFT = {"fit": ("boundary", "rim"), "developable": ("approximation", "boundary")
         "revolution": ("approximation",), "isometric": ("gpc", "isometry")}
 
 #: The regularizer each mode lowers once the net has settled, while the strain against the input
-#: falls and no pleat appears (``stages.optimize._relax``).
+#: falls and no pleat appears (``fitting.optimize._relax``).
 RELAX = {"isometric": "displacement_fairness"}
 
 #: What ``dgpc init`` nets are measured against: discrete geodesic parallel coordinates.

@@ -10,7 +10,7 @@ leave the mesh are trimmed to the largest rectangle of the grid whose points all
 mesh.
 
 Both builders return a :class:`MeshGrid`: the net, the parameters of its rows and columns, and
-how to make it again over a smaller rectangle of them (``stages.init_choice`` shrinks a
+how to make it again over a smaller rectangle of them (``layout.choice`` shrinks a
 degenerate net that way).
 """
 
@@ -35,7 +35,7 @@ from dgpc_cli.geodesics.tracing import (
 )
 from dgpc_cli.io.mesh import ReferenceMesh
 from dgpc_cli.io.net import NetArtifact
-from dgpc_cli.stages.net_size import check_net_size
+from dgpc_cli.layout.net_size import check_net_size
 
 log = logging.getLogger(__name__)
 
