@@ -12,13 +12,13 @@ from cli_helpers import dgpc, metrics
 from outline_meshes import clipped_dome, roof, write
 
 from dgpc_cli.core.reference import ReferenceSurface
+from dgpc_cli.fitting.optimize import RELEASE_R
 from dgpc_cli.io.flat import read_flat
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.strips import read_strips
 from dgpc_cli.io.units import mm_per_unit
 from dgpc_cli.metrics.degenerate import degeneracies
-from dgpc_cli.stages.optimize import RELEASE_R
 
 
 @pytest.fixture(scope="module")

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 from inspect import signature
 
 from dgpc_cli.core.solver.guided_projection import guided_projection
-from dgpc_cli.stages.optimize import STEP_RATIO
+from dgpc_cli.fitting.optimize import STEP_RATIO
 from dgpc_cli.tolerances import tol as TOL
 
 
