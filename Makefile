@@ -8,11 +8,15 @@ DEMO   := demo-out
 # pyproject.toml keeps the ranges, for users who install dgpc into an environment of theirs.
 LOCK   := constraints.txt
 LATEST := .venv-latest
+# make install: the dgpc command as a link in BINDIR (default ~/.local/bin, on PATH in most
+# shells' defaults), pointing into this checkout's .venv.
+PREFIX ?= $(HOME)/.local
+BINDIR ?= $(PREFIX)/bin
 # pytest-xdist: one worker per core; tests sharing a module fixture stay on one (tests/conftest.py).
 PARALLEL := -n auto --dist loadgroup
 
 .DEFAULT_GOAL := help
-.PHONY: help setup test test-latest lock demo bench lint clean pipelines golden
+.PHONY: help setup install uninstall test test-latest lock demo bench lint clean pipelines golden
 
 help: ## Show the targets.
 	@grep -hE '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  make %-12s %s\n", $$1, $$2}'
@@ -24,6 +28,32 @@ $(STAMP): pyproject.toml $(LOCK)
 	touch $(STAMP)
 
 setup: $(STAMP) ## Create .venv and install dgpc with its test extras, pinned by constraints.txt.
+
+# How a shell reaches `dgpc`: this checkout's link on PATH, else the two ways to get there.
+REACH = if [ "$$(command -v dgpc)" = "$(BINDIR)/dgpc" ] && \
+	    [ "$$(readlink $(BINDIR)/dgpc)" = "$(abspath $(BIN))/dgpc" ]; then \
+	    echo "dgpc: on your PATH ($(BINDIR)/dgpc, make install): type 'dgpc --help'"; \
+	  else \
+	    echo "dgpc: the command is $(BIN)/dgpc; to type 'dgpc ...' as the README does, run \
+	'source $(BIN)/activate' in your shell, or 'make install' once (puts dgpc on PATH)"; \
+	  fi
+
+install: setup ## Put the dgpc command on PATH: a link BINDIR/dgpc (~/.local/bin) to .venv/bin/dgpc.
+	@mkdir -p "$(BINDIR)"
+	@if [ -e "$(BINDIR)/dgpc" ] && [ ! -L "$(BINDIR)/dgpc" ]; then \
+	    echo "install: $(BINDIR)/dgpc exists and is not a link: left alone (give BINDIR=DIR)" >&2; \
+	    exit 1; fi
+	@ln -sfn "$(abspath $(BIN))/dgpc" "$(BINDIR)/dgpc"
+	@echo "install: $(BINDIR)/dgpc -> $(abspath $(BIN))/dgpc"
+	@case ":$$PATH:" in *":$(BINDIR):"*) \
+	    echo "install: $(BINDIR) is on your PATH: type 'dgpc --help' (a new shell may need 'hash -r')";; \
+	  *) echo "install: $(BINDIR) is not on your PATH: add  export PATH=\"$(BINDIR):\$$PATH\"  to your shell's profile (~/.bashrc, ~/.zshrc), then open a new shell";; \
+	esac
+
+uninstall: ## Remove the link make install made (only if it points into this checkout).
+	@if [ -L "$(BINDIR)/dgpc" ] && [ "$$(readlink "$(BINDIR)/dgpc")" = "$(abspath $(BIN))/dgpc" ]; then \
+	    rm "$(BINDIR)/dgpc" && echo "uninstall: removed $(BINDIR)/dgpc"; \
+	  else echo "uninstall: $(BINDIR)/dgpc is not this checkout's link: left alone"; fi
 
 test: setup ## Run the test suite (in parallel: one worker per core).
 	$(BIN)/python -m pytest -q $(PARALLEL)
@@ -54,6 +84,7 @@ lint: setup ## Run ruff.
 
 demo: setup ## Run the main job (timber cladding) on the embedded sample; prints where the cut sheets are.
 	@$(MAKE) --no-print-directory pipeline-timber-cladding OUT=$(DEMO)
+	@$(REACH)
 
 bench: setup ## Solver speed beside plain spsolve, whole commands, iterations, start-up; batch scaling.
 	$(BIN)/python benchmarks/solver_bench.py
@@ -85,5 +116,5 @@ pipelines: $(addprefix pipeline-,$(PIPELINES)) ## Run every pipeline (out/NAME/;
 golden: setup ## Refresh tests/golden/ from small pipeline runs (only after a reviewed change).
 	$(BIN)/python tests/golden/refresh.py
 
-clean: ## Remove the virtualenv and generated output.
+clean: ## Remove the virtualenv and generated output (make uninstall first if you ran make install).
 	rm -rf $(VENV) $(LATEST) $(DEMO) out .pytest_cache .ruff_cache *.egg-info

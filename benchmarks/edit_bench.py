@@ -12,6 +12,10 @@ and the seconds from the release to the settled net (``optimize``'s run). The wa
 ``factorize`` one guided-projection iteration per event (a new factorization each: what a
 drag event cost before predictor steps), ``predictor`` the page's way (an iteration every
 ``REFACTOR`` events, predictor steps between). Targets: ≤ 50 ms at 21×13, ≤ 200 ms at 41×41.
+
+Then the fabrication figures (:func:`fabrication`): per drag event of 20, the live estimate
+(the last strips bent onto the moved net), against the pipeline's run on release; targets
+≤ 100 ms at 21×13 and ≤ 1 s at 41×41 per event.
 """
 
 from __future__ import annotations
@@ -22,6 +26,7 @@ import statistics
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 import numpy as np
@@ -30,12 +35,12 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "samples"))
 import generate  # noqa: E402
 
+from dgpc_cli.edit import session as edit_session  # noqa: E402
 from dgpc_cli.edit.page import EditPage  # noqa: E402
+from dgpc_cli.edit.replay import replay  # noqa: E402
 from dgpc_cli.fitting.modes import mode_weights  # noqa: E402
 from dgpc_cli.io.drags import read_drags  # noqa: E402
 from dgpc_cli.io.handles import read_handles  # noqa: E402
-from dgpc_cli.stages import edit_session  # noqa: E402
-from dgpc_cli.stages.edit_replay import replay  # noqa: E402
 from dgpc_cli.stages.optimize_artifact import OptimizeSettings, prepare_optimize  # noqa: E402
 
 SIZES = {(21, 13): 0.050, (41, 41): 0.200}
@@ -66,6 +71,7 @@ def _drags(d: Path, m: int, n: int) -> tuple[Path, Path]:
                        "time": PERIOD * k, **({"end": True} if k == MOVES else {})})
     path = d / "drags.json"
     path.write_text(json.dumps({"events": events}))
+    (d / "goal.json").write_text(json.dumps(last["target"]))
     return net, held, path
 
 
@@ -96,6 +102,51 @@ def run(d: Path, net: Path, held: Path, drags: Path, refactor: int) -> dict:
     return log
 
 
+#: The live fabrication figures: drag events timed per size, and their targets (seconds).
+FAB_DRAGS = 20
+FAB_TARGETS = {(21, 13): 0.100, (41, 41): 1.0}
+
+
+def fabrication(net: Path, held: Path, m: int, n: int) -> None:
+    """The fabrication figures while the fourth handle is dragged in ``FAB_DRAGS`` events
+    (the live estimate: the last strips bent onto the moved net) against the pipeline's run
+    (``planarize-strips`` + ``unfold``, their defaults) on the settled net; one line per
+    size: the medians and largest per event (wall and CPU), the strips bent per event, the
+    pipeline's seconds and the ratio, and the template counts shown live and on release."""
+    settings = OptimizeSettings("isometric", mode_weights("isometric"), steps=5)
+    prepared = prepare_optimize(net, settings)
+    ids, targets = read_handles(held, prepared.net.shape, prepared.net.f_mm, scale=prepared.mm)
+    session = edit_session.EditSession(prepared, {int(i): tuple(float(c) for c in t / prepared.mm)
+                                                  for i, t in zip(ids, targets, strict=True)})
+    session.settle()
+    t0, c0 = time.perf_counter(), time.process_time()
+    opened = session.fabrication()["strips"]
+    first = (time.perf_counter() - t0, time.process_time() - c0)
+    handles = json.loads(held.read_text())["handles"]
+    u, v = handles[3]["index"]
+    start = np.array(session.position(u, v))
+    goal = np.array(json.loads((net.parent / "goal.json").read_text()))
+    walls, cpus, live = [], [], None
+    for k in range(1, FAB_DRAGS + 1):
+        session.drag(u, v, start + (goal - start) * k / FAB_DRAGS)
+        t0, c0 = time.perf_counter(), time.process_time()
+        live = session.fabrication()["strips"]
+        walls.append(time.perf_counter() - t0)
+        cpus.append(time.process_time() - c0)
+    session.settle()
+    t0, c0 = time.perf_counter(), time.process_time()
+    released = session.fabrication()["strips"]
+    release = (time.perf_counter() - t0, time.process_time() - c0)
+    target = FAB_TARGETS[(m, n)]
+    print(f"{m:>3}×{n:<3}  live per event: median {1000 * statistics.median(walls):.0f} ms "
+          f"(CPU {1000 * statistics.median(cpus):.0f} ms), largest {1000 * max(walls):.0f} "
+          f"ms, target {1000 * target:.0f} ms; pipeline on opening {first[0]:.2f} s (CPU "
+          f"{first[1]:.2f} s), on release {release[0]:.2f} s (CPU {release[1]:.2f} s): live / "
+          f"pipeline {statistics.median(cpus) / release[1]:.3f} (CPU); templates: opening "
+          f"{opened.get('templates')}, live {live.get('templates')}, released "
+          f"{released.get('templates')} ({released.get('method')})")
+
+
 def main() -> None:
     load = os.getloadavg()[0]
     print(f"dgpc edit: latency of a drag, event to the net's data sent to the page (server "
@@ -124,6 +175,7 @@ def main() -> None:
             print(f"{m:>3}×{n:<3}  predictor / factorize: median latency "
                   f"{medians['predictor'] / medians['factorize']:.2f}, median CPU "
                   f"{cpus['predictor'] / cpus['factorize']:.2f}")
+            fabrication(net, held, m, n)
     print(f"load average {os.getloadavg()[0]:.2f} at the end; cpu ms: the solver thread's own "
           "CPU time per event shown (median), what it costs on an idle core")
 

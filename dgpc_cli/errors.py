@@ -20,9 +20,10 @@ class DgpcError(Exception):
 
 
 class OptionSlip(Exception):
-    """An option's value found wrong only once the stage has read its input (a plain number in
-    the artifact's unit that was likely meant in mm): the command reports it as a usage error
-    (exit 2), the one-line message its ``str``; nothing is written."""
+    """An option's value found wrong only once the stage has read its input (a length beyond
+    the one limit of every length, a plain number outside its option's plausible span:
+    ``dgpc_cli.io.length``): the command line reports it as a usage error (exit 2), the
+    one-line message its ``str``; nothing is written."""
 
 
 class NotConverged(DgpcError):

@@ -27,6 +27,9 @@ class Tolerances:
     #: profile or handle beyond it is refused; squares of differences must not overflow, and a
     #: billion units (1000 km in mm, a million km in m) is beyond any building.
     max_coordinate: float = 1e9
+    #: Longest length any length option takes, in mm once its unit is applied (1000 km): one
+    #: limit for every command (``dgpc_cli.io.length``).
+    max_length_mm: float = 1e9
 
 
 tol = Tolerances()

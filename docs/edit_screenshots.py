@@ -82,12 +82,9 @@ def main() -> None:
             # the notice about software WebGL is about this headless browser, not the page
             js(b, "[...document.querySelectorAll('button')].filter(x => x.closest("
                   "'.mantine-Notification-root')).forEach(x => x.click())")
-            box = js(b, "(() => { const r = [...document.querySelectorAll('input[type=checkbox]')]"
-                        ".map(x => x.getBoundingClientRect()).find(r => r.width > 0); "
-                        "return [r.left + r.width / 2, r.top + r.height / 2]; })()")
-            b.click(*box["result"]["value"])
+            b.check()                                  # Fabrication figures
             print("fabrication figures on", flush=True)
-            b.wait_text("Strips", 600)
+            b.wait_text("as planarize-strips and unfold make them", 1200)
             first = status(b)
             im = shot(b, ROOT / "docs" / "edit-page.png")
 
@@ -103,7 +100,7 @@ def main() -> None:
                    y=float(centre[1]))
             b.drag(tuple(centre), tuple(centre + 8 * axis), steps=8, pause=0.3)
             after = settled(b, first)
-            b.wait_text("Strips", 600)
+            b.wait_text("as planarize-strips and unfold make them", 1200)
             shot(b, ROOT / "docs" / "edit-drag.png")
             print("after the drag:", after, flush=True)
 

@@ -102,6 +102,24 @@ class Browser:
         self.call("Input.dispatchMouseEvent", type="mouseReleased", x=x, y=y, button="left",
                   buttons=0, clickCount=1)
 
+    def check(self, index: int = 0, timeout: float = 120.0) -> None:
+        """Tick the ``index``-th visible checkbox of the page with the mouse, again until it
+        is ticked (a page still laying out its panel moves it under the first click)."""
+        where = ("[...document.querySelectorAll('input[type=checkbox]')]"
+                 f".filter(x => x.getBoundingClientRect().width > 0)[{index}]")
+        end = time.monotonic() + timeout
+        while True:
+            box = self.call("Runtime.evaluate", returnByValue=True, expression=(
+                f"(() => {{ const x = {where}; const r = x.getBoundingClientRect(); "
+                "return [r.left + r.width / 2, r.top + r.height / 2, x.checked]; })()"))
+            x, y, checked = box["result"]["value"]
+            if checked:
+                return
+            if time.monotonic() > end:
+                raise AssertionError(f"the checkbox at ({x}, {y}) does not tick")
+            self.click(x, y)
+            time.sleep(2)
+
     def drag(self, start: tuple[float, float], stop: tuple[float, float], steps: int = 12,
              pause: float = 0.05) -> None:
         """Press the left button at ``start``, move to ``stop`` in ``steps``, release."""

@@ -33,7 +33,7 @@ from filelock import FileLock
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "golden"))
 
-from pipelines import run  # noqa: E402
+from pipelines import ROOT, run  # noqa: E402
 
 
 def _run_root(tmp_path_factory) -> Path:
@@ -63,6 +63,25 @@ def pipeline_run(tmp_path_factory):
     (pipelines/*.mk through make), made once per run for every worker."""
     return lambda name: build_once(tmp_path_factory, f"pipeline-{name}",
                                    lambda d: run(name, d)) / name
+
+
+@pytest.fixture(scope="session")
+def demo_run(tmp_path_factory):
+    """The output folder of ``make demo`` (the timber-cladding pipeline at its default size,
+    as the README's quick start runs it), made once per run for every worker that reads it
+    (the README's figures, the end marks of its cut sheets); what make printed is in
+    ``make-demo.log`` beside it."""
+    import subprocess
+
+    def build(d: Path) -> None:
+        env = {**os.environ,
+               "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+        made = subprocess.run(["make", "-s", "-o", ".venv/.installed", "demo", f"DEMO={d}",
+                               f"BIN={Path(sys.executable).parent}"],
+                              cwd=ROOT, check=True, env=env, capture_output=True, text=True)
+        (d / "make-demo.log").write_text(made.stdout)
+
+    return build_once(tmp_path_factory, "demo", build) / "timber-cladding"
 
 
 def pytest_xdist_make_scheduler(config, log):

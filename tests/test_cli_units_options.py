@@ -163,9 +163,10 @@ def test_a_plain_mold_max_length_meant_in_millimetres_is_a_usage_error(wall, tmp
     r = dgpc("extract-mold", wall / "wall", "--panel-size", 2, "--mold-max-length", 2500,
              "-o", tmp_path / "m", expect=2)
     err = [line for line in r.stderr.splitlines() if line.strip()]
-    assert len(err) == 1 and err[0].startswith("Error: --mold-max-length 2500 is in the nets' "
-                                               "unit (m): 2500 m is longer than the mold")
-    assert "give the unit, e.g. 2500mm or 2.5m" in err[0]
+    assert len(err) == 1 and err[0].startswith(
+        "Error: --mold-max-length 2500 read as m (the nets' unit) is a 2500 m mold piece, above "
+        "the whole mold (")
+    assert "did you mean 2500mm? (to mean it as typed, give its unit: 2500m)" in err[0]
     assert list(tmp_path.iterdir()) == []
 
 

@@ -8,9 +8,9 @@ import pytest
 from cli_helpers import wall_net
 
 from dgpc_cli.core.solver import guided_projection, predictor_step
+from dgpc_cli.edit.session import REFACTOR, EditSession
 from dgpc_cli.fitting.modes import SOFT, mode_weights
 from dgpc_cli.fitting.optimize import net_problem
-from dgpc_cli.stages.edit_session import REFACTOR, EditSession
 from dgpc_cli.stages.optimize_artifact import OptimizeSettings, prepare_optimize
 
 M, N = 9, 7

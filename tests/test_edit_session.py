@@ -9,12 +9,12 @@ import numpy as np
 import pytest
 from cli_helpers import wall_net
 
+from dgpc_cli.edit.live import LiveSolver, Request
+from dgpc_cli.edit.session import EditSession
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.fitting.modes import mode_weights
 from dgpc_cli.io.drags import read_drags
 from dgpc_cli.metrics.crease import CREASE_LIMIT, crease, creased_vertices
-from dgpc_cli.stages.edit_live import LiveSolver, Request
-from dgpc_cli.stages.edit_session import EditSession
 from dgpc_cli.stages.optimize_artifact import (
     OptimizeSettings,
     optimize_prepared,

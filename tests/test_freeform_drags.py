@@ -151,7 +151,9 @@ def test_extract_mold_refuses_a_drifted_revolution_net(zone):
            for a in ("--weight", w)], "-o", zone / "drift", expect=None)
     m = metrics(zone / "drift")
     assert m["u_spread_max"] > 0.1 and m["mold_panel_error"]["max"] > 0.05
-    res = dgpc("extract-mold", zone / "drift", "-o", zone / "mold-drift", expect=1)
+    # the drag may have missed its own tolerance (exit 3): taken on purpose, to see the mold's
+    res = dgpc("-q", "extract-mold", zone / "drift", "--accept-status", "-o",
+               zone / "mold-drift", expect=1)
     err = res.stderr.strip()
     assert len(err.splitlines()) == 1 and "--max-strain" in err and "drift.json" in err
     assert not list(zone.glob("mold-drift*"))

@@ -126,3 +126,32 @@ def test_a_projected_net_is_made_finer_too(cap, tmp_path):
     assert record["steps"][0]["widest"] > LIMIT and record["within"]
     assert read_net(tmp_path / "n").shape[1] == record["cols"] > 21
     assert _widest(tmp_path / "n") <= LIMIT * (1 + 1e-9)
+
+
+@pytest.mark.parametrize("width", ["1e-9m", "0.01m"])
+def test_a_strip_width_that_cannot_be_met_is_refused(cap, tmp_path, width):
+    """Where init chooses the columns, a given --strip-width no net of at most MAX_COLS
+    columns meets (1 nm; 1 cm on a 10 m cap, 100 columns at least) is an error naming the
+    option, exit 1, nothing written; not a net written with a warning."""
+    r = dgpc("init", cap, "--units", "m", *GIVEN, "--strip-width", width,
+             "-o", tmp_path / "n", expect=1)
+    lines = [line for line in r.stderr.splitlines() if line.strip()]
+    assert lines[-1].startswith("Error: --strip-width: ") and "cannot be met" in lines[-1]
+    assert f"at most {MAX_COLS} columns" in lines[-1]
+    assert not any(line.startswith("warning") for line in lines)
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--strip-width", 2400], "--strip-width 2400 read as m (the net's unit) is a 2400 m strip "
+                              "width, above the mesh's diagonal (14.44 m); did you mean 2400mm?"),
+    (["--edge-length", 250], "--edge-length 250 read as m (the net's unit) is a 250 m edge, "
+                             "above half the mesh's diagonal (7.2"),
+])
+def test_a_plain_length_far_off_the_mesh_is_a_usage_error(cap, tmp_path, args, words):
+    """With --units m a plain 2400 meant in mm is a 2400 m strip on a 10 m cap: refused once
+    the mesh is read, before any net is made, naming both readings; nothing written."""
+    r = dgpc("init", cap, "--units", "m", *GIVEN, *args, "-o", tmp_path / "n", expect=2)
+    lines = [line for line in r.stderr.splitlines() if line.strip()]
+    assert len(lines) == 1 and words in lines[0]
+    assert list(tmp_path.iterdir()) == []

@@ -44,6 +44,20 @@ def test_no_package_below_the_command_line_imports_it():
     assert upward == {}
 
 
+def test_nothing_below_the_editor_imports_it():
+    """``dgpc_cli.edit`` sits above the stages: only the command line imports it."""
+    upward = {}
+    for path in sorted(PACKAGE.rglob("*.py")):
+        rel = path.relative_to(PACKAGE)
+        if rel.parts[0] in ("cli", "edit") or rel.name == "__main__.py":
+            continue
+        found = cli_imports(path.read_text(encoding="utf-8"), "edit")
+        if found:
+            upward[str(rel)] = found
+    assert upward == {}
+    assert cli_imports("from dgpc_cli.edit.session import EditSession\n", "edit")
+
+
 def test_the_layout_of_nets_imports_no_stage():
     """``dgpc_cli.layout`` (laying nets on meshes) sits below the stages: it imports neither
     them nor anything above them."""

@@ -74,6 +74,7 @@ def test_check_revolution_names_the_worst_rows():
     text = str(err.value)
     assert text.startswith("bad.json: not isometric to a surface of revolution")
     assert "rows 4-5" in text and "rows 5-6" in text and "2 of 8 row pairs" in text
+    assert "beyond --revolution-tol 1e-06" in text        # the option's name, not its old one
     check_revolution(net_widths(sector_net(wavy_profile(), 9, 7, 90.0)), 1e-12, "ok.json")
 
 

@@ -36,7 +36,7 @@ def net_set(d: Path, name: str, members: dict, stage: str = "init", failed=()) -
 @pytest.fixture(scope="module")
 def failed_unfold(tmp_path_factory):
     """``(folder, result)``: the folder with the net set ``n`` (two walls), its strips set
-    ``s`` and the flat set ``f`` of ``unfold s --stock-length 0.7``, which fails on ``p1``;
+    ``s`` and the flat set ``f`` of ``unfold s --stock-length 0.7m``, which fails on ``p1``;
     the result of that ``unfold``."""
     d = tmp_path_factory.mktemp("roof")
     for name, (rows, span) in NETS.items():
@@ -44,7 +44,7 @@ def failed_unfold(tmp_path_factory):
              "--cols", 7, "--span", span, "--units", "m", "-o", d / f"w{name}")
     net_set(d, "n", {k: d / f"w{k}" for k in NETS})
     dgpc("planarize-strips", d / "n", "-o", d / "s")
-    return d, dgpc("unfold", d / "s", "--stock-length", 0.7, "-o", d / "f", expect=1)
+    return d, dgpc("unfold", d / "s", "--stock-length", "0.7m", "-o", d / "f", expect=1)
 
 
 @pytest.fixture
@@ -133,11 +133,11 @@ def test_a_rerun_that_passes_replaces_the_failed_set(roof, tmp_path):
     """The failed set is replaced by the rerun with a stock length both members take (each
     member's output listed, nothing failed), and a rerun that fails again over a whole set
     removes the failed member's old files."""
-    dgpc("unfold", roof / "s", "--stock-length", 0.7, "-o", tmp_path / "f", expect=1)
+    dgpc("unfold", roof / "s", "--stock-length", "0.7m", "-o", tmp_path / "f", expect=1)
     dgpc("unfold", roof / "s", "-o", tmp_path / "f", "--force")
     assert "failed" not in read_patch_set(tmp_path / "f")["data"]
     assert (tmp_path / "f.p1.json").is_file()
-    dgpc("unfold", roof / "s", "--stock-length", 0.7, "-o", tmp_path / "f", "--force",
+    dgpc("unfold", roof / "s", "--stock-length", "0.7m", "-o", tmp_path / "f", "--force",
          expect=1)
     assert [m["name"] for m in read_patch_set(tmp_path / "f")["data"]["failed"]] == ["p1"]
     assert not list(tmp_path.glob("f.p1.*"))
@@ -146,7 +146,7 @@ def test_a_rerun_that_passes_replaces_the_failed_set(roof, tmp_path):
 def test_every_member_failed_is_recorded_too(roof, tmp_path):
     """Stock shorter than both members' strips are wide: the set lists no output, only the
     failures (and is refused downstream)."""
-    dgpc("unfold", roof / "s", "--stock-length", 0.1, "-o", tmp_path / "f", expect=1)
+    dgpc("unfold", roof / "s", "--stock-length", "0.1m", "-o", tmp_path / "f", expect=1)
     doc = read_patch_set(tmp_path / "f")
     assert doc["data"]["members"] == []
     assert [m["name"] for m in doc["data"]["failed"]] == ["p1", "p2"]

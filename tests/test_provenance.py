@@ -25,10 +25,12 @@ def chain(cwd: Path, out: str, profile: str):
         ["init", "--surface", "revolution", "--profile", profile, "--rows", "7", "--cols", "5",
          "--reference-out", f"{out}/ref.obj", "-o", f"{out}/net"],
         ["optimize", f"{out}/net", "--mode", "fit", "--max-iter", "3", "-o", f"{out}/fit"],
-        ["planarize-strips", f"{out}/fit", "-o", f"{out}/strips"],
-        ["unfold", f"{out}/strips", "-o", f"{out}/flat"],
+        # a fit of 3 iterations may stop short of its tolerance (exit 3): the chain goes on
+        # with it on purpose, and says so at every stage
+        ["planarize-strips", f"{out}/fit", "--accept-status", "-o", f"{out}/strips"],
+        ["unfold", f"{out}/strips", "--accept-status", "-o", f"{out}/flat"],
         ["nest", f"{out}/flat.json", "--sheet", "2500x1250", "--scale", "100",
-         "--rotations", "0", "-o", f"{out}/sheets"],
+         "--rotations", "0", "--accept-status", "-o", f"{out}/sheets"],
     ]
     for args in steps:
         result = subprocess.run([DGPC, "-q", *args], cwd=cwd, capture_output=True, text=True,

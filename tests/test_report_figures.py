@@ -186,6 +186,11 @@ def test_strain_figure_marks_the_handles_and_shows_the_start_shape():
     lengths = [np.linalg.norm(s[1] - s[0]) for s in moves.get_segments()]
     assert lengths[0] == pytest.approx(0.0, abs=1e-12) and lengths[1] > 0.1
     assert not [a for a in fig.axes if a.get_gid() == "view-plan"]   # no rims over each other
+    # the legend says what is drawn (crosses, lines from the start), with the largest move
+    labels = [t.get_text() for legend in fig.legends for t in legend.get_texts()]
+    (said,) = [t for t in labels if t.startswith("handles (2)")]
+    assert "arrow" not in said and "line from where it started" in said
+    assert f"{np.linalg.norm(f[-1, -1] - f0[-1, -1]):.3g} m" in said
 
 
 # --------------------------------------------------------------------------------------------

@@ -114,3 +114,33 @@ def test_overlay_of_many_long_classes_draws_those_that_fit_and_says_so():
     for ax in cells:
         box = ax.get_position()
         assert box.width * width >= MIN_CELL - 0.1 - 1e-9 and box.height > 0
+
+
+def test_overlay_draws_the_score_lines_of_the_representative_once():
+    """Twelve copies of one template scored each for its own bending: the cell overlays the
+    twelve outlines and draws one set of score lines, the representative's (not twelve sets
+    on top of each other), and its title says the copies are scored each for its own."""
+    from dgpc_cli.report.flat import CUT, SCORE, overlay_figure
+
+    t = np.linspace(0.0, 1.0, 12)
+    A = np.column_stack([6.0 * t, np.zeros_like(t)])
+    B = A[::-1] + [0.0, 0.3]
+    parts = [{"id": f"S{k}", "class": "C01", "outline": np.vstack([A, B]).tolist(),
+              "score": [[A[i].tolist(), (B[-1 - i] + [0.01 * k, 0.0]).tolist()]
+                        for i in range(1, 11)],
+              "alignment": {"matrix": np.eye(2).tolist(), "translation": [0.0, 0.0]}}
+             for k in range(12)]
+    classes = [{"id": "C01", "quantity": 12, "representative": "S3",
+                "members": [p["id"] for p in parts], "max_error": 0.0,
+                "score_lines": "per copy"}]
+    fig = overlay_figure(parts, classes, "m")
+    (cell,) = [a for a in fig.axes if (a.get_gid() or "").startswith("class-")]
+    colours = [tuple(np.round(line.get_color(), 3)) for line in cell.lines]
+    assert colours.count(tuple(np.round(CUT, 3))) == 12
+    scores = [line for line in cell.lines if tuple(np.round(line.get_color(), 3))
+              == tuple(np.round(SCORE, 3))]
+    assert len(scores) == 10
+    # the representative's own lines: S3's lean 0.03 across the strip
+    leans = [abs(float(np.diff(line.get_data()[0])[0])) for line in scores]
+    assert np.allclose(leans, 0.03), leans
+    assert "S3's shown" in cell.get_title()

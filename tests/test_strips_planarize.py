@@ -287,7 +287,8 @@ def _geodesics(net, strips):
 
 def test_folded_strips_exit_3_and_unfold_refuses_them(tmp_path, monkeypatch):
     """Without the slide fairness the polish folds the twisted cylinder strips: planarize-strips
-    names them and exits 3 (written anyway); unfold refuses the strips with one line."""
+    names them and exits 3 (written anyway); unfold refuses the strips with one line naming
+    their status, and with --accept-status refuses the strip whose outline crosses itself."""
     import dgpc_cli.strips.polish as polish
     from dgpc_cli.core.solver import Schedule
 
@@ -298,6 +299,10 @@ def test_folded_strips_exit_3_and_unfold_refuses_them(tmp_path, monkeypatch):
     assert "cross" in res.stderr and "S-v00" in res.stderr
     assert load_envelope(tmp_path / "s.json", "strips")["status"]["rulings_cross"]
     res = dgpc("unfold", tmp_path / "s", "-o", tmp_path / "f", expect=1)
+    assert "its status is rulings_cross (S-v00" in res.stderr
+    assert len(res.stderr.strip().splitlines()) == 1
+    res = dgpc("-q", "unfold", tmp_path / "s", "--accept-status", "-o", tmp_path / "f",
+               expect=1)
     assert "crosses itself" in res.stderr and len(res.stderr.strip().splitlines()) == 1
     assert not list(tmp_path.glob("f.*"))
 

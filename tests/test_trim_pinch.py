@@ -136,14 +136,14 @@ def test_the_default_stagger_gives_way_where_no_ruling_keeps_it(caplog):
         return 2.5 * (b - a)
 
     args = (extent, 0, 8, list(range(1, 8)), 6.0, positions[1:8], 1.5, positions, "S-v01")
-    with pytest.raises(DgpcError, match="keeps 1.5"):
+    with pytest.raises(DgpcError, match=r"keeps the stagger \(1.5 mm\)"):
         split_run(*args)
     with caplog.at_level(logging.WARNING):
         joints = split_run(*args, relax=True)
     cuts = [0, *joints, 8]
     assert all(extent(a, b) <= 6.0 for a, b in zip(cuts[:-1], cuts[1:], strict=True))
     assert joints == [2, 4, 6]
-    assert "S-v01: 3 joint(s) (rows 2, 4, 6) nearer than the stagger 1.5" in caplog.text
+    assert "S-v01: 3 joint(s) (rows 2, 4, 6) nearer than the stagger (1.5 mm)" in caplog.text
 
 
 def test_a_fold_trimmed_away_does_not_stop_unfold():

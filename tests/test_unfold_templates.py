@@ -243,9 +243,9 @@ def test_a_plain_stock_length_meant_in_millimetres_is_a_usage_error(chain, tmp_p
                expect=2)
     err = [line for line in res.stderr.splitlines() if line.strip()]
     assert len(err) == 1 and err[0].startswith("Error")
-    assert "--stock-length 2500 is in the strips' unit (m): 2500 m is longer than every " \
-           "strip (the longest is 4.47" in err[0]
-    assert " m); give the unit, e.g. 2500mm or 2.5m" in err[0]
+    assert "--stock-length 2500 read as m (the strips' unit) is a 2500 m stock length, above " \
+           "every strip's length (the longest is 4.47" in err[0]
+    assert "did you mean 2500mm? (to mean it as typed, give its unit: 2500m)" in err[0]
     assert list(tmp_path.iterdir()) == []
     # with its unit: cut into boards no longer than 2.5 m, no warning
     res = dgpc("unfold", chain / "chain", "--stock-length", "2500mm", "-o", tmp_path / "g")
@@ -256,15 +256,30 @@ def test_a_plain_stock_length_meant_in_millimetres_is_a_usage_error(chain, tmp_p
     assert len(flat.parts) > 6
 
 
-@pytest.mark.parametrize("stock", ["5m", "6000mm", 9000])
+@pytest.mark.parametrize("stock", ["5m", "6000mm"])
 def test_a_stock_length_longer_than_every_strip_only_warns(chain, tmp_path, stock):
-    """Longer than every strip with its unit, or a plain number too long in mm as well
-    (9000 mm > 4.5 m): nothing to cut, one warning, each strip one board."""
+    """Longer than every strip with its unit: nothing to cut, one warning, each strip one
+    board (a plain number that long is a usage error, below)."""
     res = dgpc("unfold", chain / "chain", "--stock-length", stock, "-o", tmp_path / "f")
     warnings = [line for line in res.stderr.splitlines() if "--stock-length" in line]
     assert len(warnings) == 1 and "nothing is cut into boards" in warnings[0]
     parts = read_flat(tmp_path / "f").parts
     assert sorted(p["strip"] for p in parts) == list(range(6))         # one board per strip
+
+
+@pytest.mark.parametrize("stock, words", [
+    (9000, "9000 m stock length, above every strip's length"),
+    (0.1, "0.1 m stock length, below the widest part"),
+])
+def test_a_plain_stock_length_outside_its_span_is_a_usage_error(chain, tmp_path, stock, words):
+    """A plain number longer than every strip (nothing to cut) or no longer than the widest
+    part, with no other reading inside: exit 2, one line naming the reading, nothing written."""
+    res = dgpc("unfold", chain / "chain", "--stock-length", stock, "-o", tmp_path / "f",
+               expect=2)
+    err = [line for line in res.stderr.splitlines() if line.strip()]
+    assert len(err) == 1 and words in err[0] and "did you mean" not in err[0]
+    assert f"give its unit: {stock}m)" in err[0]
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_a_plain_stagger_meant_in_millimetres_is_a_usage_error(chain, tmp_path):
@@ -273,8 +288,8 @@ def test_a_plain_stagger_meant_in_millimetres_is_a_usage_error(chain, tmp_path):
     res = dgpc("unfold", chain / "chain", "--stock-length", "2m", "--stagger", 400,
                "-o", tmp_path / "f", expect=2)
     err = [line for line in res.stderr.splitlines() if line.strip()]
-    assert len(err) == 1 and "--stagger 400 is in the strips' unit (m)" in err[0]
-    assert "400mm or 0.4m" in err[0]
+    assert len(err) == 1 and "--stagger 400 read as m (the strips' unit) is a 400 m " \
+        "stagger, above the stock length (2m); did you mean 400mm?" in err[0]
     assert list(tmp_path.iterdir()) == []
     dgpc("unfold", chain / "chain", "--stock-length", "2m", "--stagger", "400mm",
          "-o", tmp_path / "g")

@@ -81,8 +81,8 @@ def test_a_plain_lath_gap_meant_in_millimetres_is_a_usage_error(tmp_path):
     res = dgpc("laths", tmp_path / "along", tmp_path / "across", "--gap", 5, "-o",
                tmp_path / "l", expect=2)
     err = [line for line in res.stderr.splitlines() if line.strip()]
-    assert len(err) == 1 and "--gap 5 is in the nets' unit (m): 5 m is longer than the " \
-        "nets' mean edge (0.1 m); give the unit, e.g. 5mm or 0.005m" in err[0]
+    assert len(err) == 1 and "--gap 5 read as m (the nets' unit) is a 5 m gap, above the " \
+        "nets' mean edge (0.1 m); did you mean 5mm?" in err[0]
     assert _no_output(tmp_path, before)
     for gap in ("5mm", 0.01):
         dgpc("laths", tmp_path / "along", tmp_path / "across", "--gap", gap, "-o",

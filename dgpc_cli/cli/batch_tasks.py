@@ -25,7 +25,7 @@ from pathlib import Path
 import click
 
 from dgpc_cli.batch.cache import hash_outputs
-from dgpc_cli.errors import DgpcError
+from dgpc_cli.errors import DgpcError, OptionSlip
 from dgpc_cli.io.artifact import listed_files
 
 _LOCK = threading.Lock()
@@ -55,6 +55,8 @@ def invoke(command: str, args: list[str]) -> tuple[int, str]:
                  obj={"verbosity": -1})
     except DgpcError as err:
         return err.exit_code, str(err)
+    except OptionSlip as slip:           # a usage error found once the input is read
+        return 2, " ".join(str(slip).split())
     except click.exceptions.Exit as err:
         return err.exit_code, ""
     except click.ClickException as err:

@@ -9,6 +9,7 @@ import click
 from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import (
+    accept_status_opt,
     check_units,
     check_writable,
     force_opt,
@@ -19,7 +20,6 @@ from dgpc_cli.cli.options import (
     show_progress,
     units_check_opt,
 )
-from dgpc_cli.errors import OptionSlip
 from dgpc_cli.io.mold import mold_paths
 from dgpc_cli.mold.extract import (
     DEFAULT_FLAT_TOL,
@@ -68,7 +68,8 @@ class LambdaParam(click.ParamType):
 @click.option("--mold-max-length", type=LengthParam(min=0, min_open=True), default=None,
               metavar="LENGTH",
               help=length_help("Longest mold piece along the meridian, > 0 [default: no "
-                               "limit]."))
+                               "limit].", plausible="up to the whole mold's length along its "
+                                                    "meridian"))
 @click.option("--revolution-tol", "tol", type=FiniteFloat(min=0, min_open=True), default=None,
               callback=from_old_name("--revolution-tol"),
               help="Relative tolerance (a ratio, no unit) of equation (5) and of the "
@@ -79,12 +80,13 @@ class LambdaParam(click.ParamType):
               help="Largest relative difference of a panel's edges and diagonals from its "
                    "mold patch; a net with a panel further off is refused.")
 @units_check_opt
+@accept_status_opt
 @output_opt
 @force_opt
 @format_opt
 @click.pass_context
 def extract_mold_cmd(ctx, nets, segments, lam, panel_size, flat_tol, mold_max_length, tol,
-                     max_strain, units_check, output, force, fmt):
+                     max_strain, units_check, accept_status, output, force, fmt):
     """Extract the surface of revolution that the nets NET… are isometric to (paper §4.2.2).
 
     Writes the mold artifact -o MOLD: MOLD.json, MOLD.obj (the surface of revolution and one
@@ -100,15 +102,13 @@ def extract_mold_cmd(ctx, nets, segments, lam, panel_size, flat_tol, mold_max_le
     check_writable(output, force, *(paths[k] for k in ("profile_csv", "profile_dxf",
                                                         "panels_csv", "panels_obj")))
     opts = MoldOptions(segments=segments, lam=lam, panel_size=panel_size, flat_tol=flat_tol,
-                       max_length=mold_max_length, tol=tol, max_strain=max_strain)
+                       max_length=mold_max_length, tol=tol, max_strain=max_strain,
+                       accept_status=accept_status)
 
     def chosen(line: str):
         if show_progress(ctx):
             click.echo(line, err=True)
 
-    try:
-        run_extract_mold(nets, output, opts, force=force, fmt=fmt,
-                         check_units=lambda unit, source: check_units(units_check, unit, source),
-                         chosen=chosen, written=lambda json_path: click.echo(str(json_path)))
-    except OptionSlip as slip:
-        raise click.UsageError(str(slip)) from None
+    run_extract_mold(nets, output, opts, force=force, fmt=fmt,
+                     check_units=lambda unit, source: check_units(units_check, unit, source),
+                     chosen=chosen, written=lambda json_path: click.echo(str(json_path)))

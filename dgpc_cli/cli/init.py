@@ -20,7 +20,7 @@ from dgpc_cli.cli.options import (
 )
 from dgpc_cli.cli.patch_count import PatchCount
 from dgpc_cli.cli.progress import StatusLine
-from dgpc_cli.io.units import DEFAULT_UNITS, UNIT_MM
+from dgpc_cli.io.units import DEFAULT_UNITS, UNIT_MM, mm_per_unit
 from dgpc_cli.stages.init import init_nets
 from dgpc_cli.surfaces.profiles import describe_builtins
 from dgpc_cli.surfaces.revolution import MAX_TWIST
@@ -116,7 +116,8 @@ def parse_direction(text: str | None):
               help=length_help("With a mesh, instead of --cols: the vertex spacing, the length "
                                "of the net's edges across the geodesics (also along them "
                                "unless --rows is given), > 0.",
-                               where="in the model's unit (--units)"))
+                               where="in the model's unit (--units)",
+                               plausible="up to half the mesh's bounding-box diagonal"))
 @old_name("--spacing", "--edge-length", type=LengthParam(min=0, min_open=True))
 @click.option("--strip-width", "strip_width", type=LengthParam(min=0, min_open=True),
               metavar="LENGTH",
@@ -128,8 +129,11 @@ def parse_direction(text: str | None):
                                "--edge-length win, and init only warns. Default with --units: "
                                "2.4m, the width of a 2500 mm sheet (nest --sheet 6100x2500) "
                                "less its margins and some room for a board that curves; "
-                               "without --units, none (the mesh's size is not known).",
-                               where="in the model's unit (--units)"))
+                               "without --units, none (the mesh's size is not known); a width "
+                               "no net of at most 101 columns meets is refused.",
+                               where="in the model's unit (--units)",
+                               plausible="from a thousandth of the mesh's bounding-box "
+                                         "diagonal to the diagonal"))
 @click.option("--span", "span", type=FiniteFloat(min=0, min_open=True, max=360), default=180.0,
               show_default=True,
               help="--surface: angle covered by the v-lines, degrees (360: a full ring).")
@@ -205,10 +209,22 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
     d = parse_direction(direction)
     given_units = units
     units = units or DEFAULT_UNITS
+    # the one rule of every length (dgpc_cli.io.length): its limit now, in the net's unit, and
+    # a plain number's plausible span once the mesh's size is known
+    given = {"--edge-length": spacing, "--strip-width": strip_width}
     if spacing is not None:
-        spacing = spacing.in_units(units, artifact_units=units)
+        spacing = spacing.check("--edge-length", units) / mm_per_unit(units)
     if strip_width is not None:
-        strip_width = strip_width.in_units(units, artifact_units=units)
+        strip_width = strip_width.check("--strip-width", units) / mm_per_unit(units)
+
+    def check_lengths(diagonal: float) -> None:
+        from dgpc_cli.layout.width import plausible_spans
+
+        spans = plausible_spans(diagonal, units)
+        for option, length in given.items():
+            if length is not None:
+                length.check(option, units, spans[option], "the net's")
+
     check_writable(output, force, *([reference_out] if reference_out else []))
     say = (lambda text: click.echo(text, err=True)) if show_progress(ctx) else None
     written = init_nets(output, units=units, units_given=given_units is not None, fmt=fmt,
@@ -217,7 +233,7 @@ def init(ctx, reference, surface, profile, method, base, direction, angle, from_
                         angle=angle, rows=rows, cols=cols, spacing=spacing, span=span,
                         twist=twist, reference_out=reference_out,
                         largest_component=largest_component, extend=extend, patches=patches,
-                        strip_width=strip_width,
+                        strip_width=strip_width, check_lengths=check_lengths,
                         check=check_writable, status=lambda: StatusLine(ctx, "init"), say=say)
     for path in written:
         click.echo(str(path))

@@ -31,9 +31,10 @@ def _axis(ctx, param, value):
 @click.option("--coverage-tol", type=LengthParam(min=0, min_open=True), default=None,
               help=length_help("Net: a point of the reference counts as covered when the net "
                                "passes within this distance of it [default: 0.2 % of the "
-                               "reference's bounding-box diagonal]."))
+                               "reference's bounding-box diagonal].",
+                               plausible="up to 10 % of the reference's diagonal"))
 def inspect(stem, axis, against, coverage_tol):
-    """Print the metrics of the artifact STEM (SPEC §7) as JSON on stdout.
+    """Print the metrics of the artifact STEM (docs/metrics.md) as JSON on stdout.
 
     For a net: R (the paper's constraint error at mean edge length 1), geometric residuals,
     Clairaut (with an axis), strain (with --against), Hausdorff distance (when the net records a

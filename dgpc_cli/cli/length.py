@@ -3,8 +3,10 @@
 A length option takes ``2.5m``, ``2500mm``, ``0.5 mm``, ``1in`` or a plain number. A plain
 number means the unit of the artifact the command reads (its ``data.units``), or, where the
 option says so in its help (sheet sizes, kerf), millimetres: the option's ``plain`` unit.
-The type returns a :class:`Length`; the command converts it once it knows the artifact's unit
-(:meth:`Length.to_mm`, :meth:`Length.in_units`). Units are those of :data:`io.units.UNIT_MM`.
+The type returns a :class:`~dgpc_cli.io.length.Length`; the command converts it once it knows
+the artifact's unit. The rule every length follows (one limit after conversion, a plausible
+span for plain numbers) is :meth:`~dgpc_cli.io.length.Length.check`: an option whose span and
+unit are known here is checked at once, the others by their stage once it has read its input.
 
 NaN, ±inf, malformed text, unknown units and values outside the option's range are usage
 errors (click's ``BadParameter``, exit 2) naming the option.
@@ -14,11 +16,14 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
 
 import click
 
+from dgpc_cli.errors import OptionSlip
+from dgpc_cli.io.length import Length, Span
 from dgpc_cli.io.units import UNIT_MM, mm_per_unit
+
+__all__ = ["ARTIFACT_UNIT", "Length", "LengthParam", "Span", "length_help"]
 
 _LENGTH = re.compile(
     r"^\s*(?P<number>[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)\s*(?P<unit>[A-Za-z]+)?\s*$")
@@ -27,69 +32,25 @@ _LENGTH = re.compile(
 ARTIFACT_UNIT = None
 
 
-@dataclass(frozen=True)
-class Length:
-    """A length as the user gave it: ``value`` in ``unit`` (None: the option's plain unit)."""
-
-    value: float
-    unit: str | None = None
-    #: The unit a plain number is in (None: the artifact's unit, known only to the command).
-    plain: str | None = ARTIFACT_UNIT
-
-    def unit_for(self, artifact_units: str | None) -> str:
-        """The unit this length is in, given the unit of the artifact the command reads."""
-        unit = self.unit or self.plain or artifact_units
-        if unit is None:
-            raise ValueError("a plain number needs the artifact's unit")
-        return unit
-
-    def to_mm(self, artifact_units: str | None = None) -> float:
-        """The length in millimetres."""
-        return self.value * mm_per_unit(self.unit_for(artifact_units))
-
-    def in_units(self, units: str, artifact_units: str | None = None) -> float:
-        """The length in ``units`` (``artifact_units``: the unit of a plain number)."""
-        return self.to_mm(artifact_units) / mm_per_unit(units)
-
-    def unit_slip(self, option: str, artifact_units: str, limit_mm: float, what: str,
-                  whose: str = "the artifact's") -> str | None:
-        """The one-line usage error for a plain number that is in ``artifact_units`` (``whose``
-        unit, e.g. "the strips'") but was likely meant in millimetres (issue: no silent unit
-        traps): longer than ``limit_mm`` (``what`` it is compared with, e.g. "every strip (the
-        longest is 6.06 m)") while read as mm it would not be. None when the length has a
-        unit, a plain number is not in the artifact's unit, the artifact is in mm, or neither
-        reading is plausible."""
-        if self.unit is not None or self.plain is not None or artifact_units == "mm":
-            return None
-        if not self.to_mm(artifact_units) > limit_mm or self.value > limit_mm:
-            return None
-        k = mm_per_unit(artifact_units)
-        return (f"{option} {self.text()} is in {whose} unit ({artifact_units}): {self.value:g} "
-                f"{artifact_units} is longer than {what}; give the unit, e.g. {self.value:g}mm "
-                f"or {self.value / k:g}{artifact_units}")
-
-    def text(self) -> str:
-        """The length as typed back, with its unit where one was given: ``0.5mm``, ``2500``."""
-        return f"{self.value:g}{self.unit or ''}"
-
-    def __str__(self) -> str:
-        return self.text()
-
-
 class LengthParam(click.ParamType):
     """A length with an optional unit suffix, optionally bounded (bounds in the given unit).
 
     ``plain``: the unit of a plain number (None: the artifact's unit); ``min``/``max`` bound
-    the number as typed, ``min_open`` excludes ``min`` itself (a length that must be > 0).
+    the number as typed, ``min_open`` excludes ``min`` itself (a length that must be > 0);
+    ``span``: where a plain number is plausible (:class:`~dgpc_cli.io.length.Span`, mm),
+    checked here for an option whose plain numbers are in a fixed unit. A length whose unit
+    is known here is also held to the one limit of every length
+    (:meth:`~dgpc_cli.io.length.Length.check`); the others are checked by their stage.
     """
 
     name = "length"
 
     def __init__(self, plain: str | None = ARTIFACT_UNIT, min: float | None = None,
-                 max: float | None = None, min_open: bool = False):
+                 max: float | None = None, min_open: bool = False, span: Span | None = None):
         if plain is not None:
             mm_per_unit(plain)
         self.plain, self.min, self.max, self.min_open = plain, min, max, min_open
+        self.span = span
 
     def get_metavar(self, param, ctx=None) -> str:
         return "LENGTH"
@@ -117,7 +78,14 @@ class LengthParam(click.ParamType):
                       param, ctx)
         if self.max is not None and number > self.max:
             self.fail(f"{value!r} must be <= {self.max:g}.", param, ctx)
-        return Length(number, unit, self.plain)
+        length = Length(number, unit, self.plain, typed=" ".join(str(value).split()))
+        if unit is not None or self.plain is not None:
+            option = param.opts[0] if param is not None and param.opts else "length"
+            try:
+                length.check(option, span=self.span)
+            except OptionSlip as slip:
+                raise click.UsageError(str(slip), ctx) from None
+        return length
 
 
 def _non_finite(text: str) -> bool:
@@ -128,9 +96,16 @@ def _non_finite(text: str) -> bool:
         return False
 
 
-def length_help(text: str, plain: str | None = ARTIFACT_UNIT, where: str | None = None) -> str:
+def length_help(text: str, plain: str | None = ARTIFACT_UNIT, where: str | None = None,
+                plausible: str | Span | None = None) -> str:
     """An option's help with the rule for its units appended (``where``: what a plain number
-    is in, for an option whose unit is neither an artifact's nor fixed, e.g. ``init --units``)."""
+    is in, for an option whose unit is neither an artifact's nor fixed, e.g. ``init --units``;
+    ``plausible``: where a plain number is plausible, a span or its words)."""
     where = where or ("in the artifact's unit (its data.units)" if plain is None
                       else f"in {plain}")
-    return f"{text} A LENGTH with a unit (2.5m, 2500mm, 0.5mm) or a plain number {where}."
+    out = f"{text} A LENGTH with a unit (2.5m, 2500mm, 0.5mm) or a plain number {where}."
+    if plausible is not None:
+        words = plausible.words() if isinstance(plausible, Span) else plausible
+        out += (f" Plausible: {words} (a plain number outside it is a usage error; a length "
+                "with its unit is taken as given).")
+    return out

@@ -9,7 +9,7 @@ import sys
 import click
 
 from dgpc_cli import __version__
-from dgpc_cli.errors import DgpcError
+from dgpc_cli.errors import DgpcError, OptionSlip
 
 log = logging.getLogger("dgpc_cli")
 
@@ -89,6 +89,12 @@ class DgpcGroup(click.Group):
         except DgpcError as err:
             click.echo(f"Error: {err}", err=True)
             ctx.exit(err.exit_code)
+        except OptionSlip as slip:
+            # an option's value found wrong once its input is read: a usage error, as click's
+            name = ctx.invoked_subcommand
+            see = f" (see '{ctx.command_path} {name} --help')" if name else ""
+            click.echo(f"Error: {' '.join(str(slip).split())}{see}", err=True)
+            ctx.exit(2)
         except click.UsageError as err:
             # One line, as every error (SPEC §2): click's own display adds the usage lines.
             command = f" (see '{err.ctx.command_path} --help')" if err.ctx is not None else ""

@@ -9,6 +9,7 @@ import click
 from dgpc_cli.cli.finite_float import FiniteFloat
 from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import (
+    accept_status_opt,
     check_units,
     check_writable,
     force_opt,
@@ -18,7 +19,7 @@ from dgpc_cli.cli.options import (
     progressbar,
     units_check_opt,
 )
-from dgpc_cli.nesting.tools import TOOLS, resolve_tool
+from dgpc_cli.nesting.tools import BIT_SPAN, KERF_SPAN, MARGIN_SPAN, TOOLS, resolve_tool
 from dgpc_cli.stages.nest import ENGINES, parse_rotations, parse_sheet
 from dgpc_cli.stages.nest_run import NestOptions, run_nest
 
@@ -46,17 +47,18 @@ def _parsed(parser):
                    "spacing 3 mm, margin 10 mm), router (bit 6 mm, spacing 8 mm, margin "
                    "20 mm), waterjet (kerf 1 mm, spacing 2 mm, margin 25 mm). [default: "
                    "laser; router with --tool-diameter]")
-@click.option("--kerf", type=LengthParam(plain="mm", min=0, min_open=True), default=None,
+@click.option("--kerf", type=LengthParam(plain="mm", min=0, min_open=True, span=KERF_SPAN),
+              default=None,
               help=length_help("Cut width of a laser or water jet, > 0 (default 0.2 mm laser, "
                                "1 mm waterjet); the default spacing is the kerf plus the "
-                               "tool's clearance.", plain="mm"))
+                               "tool's clearance.", plain="mm", plausible=KERF_SPAN))
 @click.option("--tool-diameter", "tool_diameter",
-              type=LengthParam(plain="mm", min=0, min_open=True), default=None,
+              type=LengthParam(plain="mm", min=0, min_open=True, span=BIT_SPAN), default=None,
               help=length_help("Router bit diameter, > 0 (default 6 mm); the default spacing "
-                               "is the diameter plus 2 mm.", plain="mm"))
-@click.option("--margin", type=LengthParam(plain="mm", min=0), default=None,
+                               "is the diameter plus 2 mm.", plain="mm", plausible=BIT_SPAN))
+@click.option("--margin", type=LengthParam(plain="mm", min=0, span=MARGIN_SPAN), default=None,
               help=length_help("Free border of each sheet, >= 0 [default: the tool's].",
-                               plain="mm"))
+                               plain="mm", plausible="0, or at least 1 mm"))
 @click.option("--spacing", type=LengthParam(plain="mm", min=0), default=None,
               help=length_help("Least distance between parts, at least the tool's cut width "
                                "[default: cut width + the tool's clearance].", plain="mm"))
@@ -82,13 +84,14 @@ def _parsed(parser):
               help="Random seed (engine spyrrow).")
 @click.option("--no-preview", "no_preview", is_flag=True,
               help="Write no SVG/PNG previews of the sheets (the DXFs only: faster).")
+@accept_status_opt
 @output_opt
 @force_opt
 @format_opt
 @click.pass_context
 def nest(ctx, stems, mold_stem, sheet_size, tool, kerf, tool_diameter, margin, spacing, border,
-         label_style, rotations, units_check, scale, engine, time_limit, seed, no_preview, output,
-         force, fmt):
+         label_style, rotations, units_check, scale, engine, time_limit, seed, no_preview,
+         accept_status, output, force, fmt):
     """Place every part of the flat artifact FLAT (each congruence class in its quantity) on
     as few sheets as it can, and write the sheets artifact -o SHEETS: SHEETS.json, .obj,
     .parts.csv and per sheet SHEETS.sheetNN.dxf/.svg/.png (with --mold, .moldmap.dxf).
@@ -111,7 +114,8 @@ def nest(ctx, stems, mold_stem, sheet_size, tool, kerf, tool_diameter, margin, s
         raise click.BadParameter(message, ctx=ctx, param_hint=f"'{option}'") from None
     opts = NestOptions(sheet_size=sheet_size, cutter=cutter, rotations=rotations, border=border,
                        label_style=label_style, scale=scale, engine=engine,
-                       time_limit=time_limit, seed=seed, previews=not no_preview)
+                       time_limit=time_limit, seed=seed, previews=not no_preview,
+                       accept_status=accept_status)
     run_nest(stems, output, opts, mold_stem=mold_stem, force=force, fmt=fmt,
              check=check_writable,
              check_units=lambda units, source: check_units(units_check, units, source),

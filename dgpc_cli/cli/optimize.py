@@ -12,7 +12,6 @@ from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_o
 from dgpc_cli.cli.patch_set_members import on_members
 from dgpc_cli.cli.progress import SolverProgress
 from dgpc_cli.core.solver.linear import BACKENDS
-from dgpc_cli.errors import OptionSlip
 from dgpc_cli.fitting.modes import MODES, mode_weights
 from dgpc_cli.stages.optimize_artifact import OptimizeSettings
 from dgpc_cli.stages.optimize_run import run_optimize
@@ -59,7 +58,8 @@ from dgpc_cli.tolerances import tol as TOL
 @click.option("--coverage-tol", type=LengthParam(min=0, min_open=True), default=None,
               help=length_help("With a reference: a point of it counts as covered when the "
                                "net passes within this distance (metrics.coverage) [default: "
-                               "0.2 % of the reference's bounding-box diagonal]."))
+                               "0.2 % of the reference's bounding-box diagonal].",
+                               plausible="up to 10 % of the reference's diagonal"))
 @click.option("--solver", "backend", type=click.Choice(["auto", *BACKENDS]), default="auto",
               show_default=True, help="Sparse linear solver of the normal equations.")
 @output_opt
@@ -88,10 +88,7 @@ def optimize(ctx, stem, mode, reference, no_reference, handles, steps, weights, 
     settings = OptimizeSettings(mode, schedules, steps=steps, max_iter=max_iter, tol=tol,
                                 max_strain=max_strain, gpc_tol=gpc_tol, backend=backend,
                                 coverage_tol=coverage_tol)
-    try:
-        run_optimize(stem, output, settings, reference=reference, no_reference=no_reference,
-                     weights=weights, handles=handles, force=force, fmt=fmt,
-                     solver_progress=lambda label, target: SolverProgress(ctx, label, target),
-                     written=lambda out_json: click.echo(str(out_json)))
-    except OptionSlip as slip:
-        raise click.UsageError(str(slip)) from None
+    run_optimize(stem, output, settings, reference=reference, no_reference=no_reference,
+                 weights=weights, handles=handles, force=force, fmt=fmt,
+                 solver_progress=lambda label, target: SolverProgress(ctx, label, target),
+                 written=lambda out_json: click.echo(str(out_json)))

@@ -11,6 +11,7 @@ from dgpc_cli.cli.output_path import OutputPath
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.io.artifact import artifact_paths
 from dgpc_cli.io.units import UNIT_MM
+from dgpc_cli.stages.input_status import ACCEPT_HELP
 
 output_opt = click.option(
     "-o", "--output", "output", required=True, type=OutputPath(),
@@ -21,6 +22,8 @@ label_style_opt = click.option(
     show_default=True,
     help="Part ids as TEXT on layer LABEL, or as single-stroke polylines on layer ENGRAVE that "
          "an engraver or pen follows.")
+accept_status_opt = click.option("--accept-status", "accept_status", is_flag=True,
+                                 help=ACCEPT_HELP)
 format_opt = click.option(
     "--format", "fmt", type=click.Choice(["obj", "3dm"]), default="obj", show_default=True,
     help="Geometry format: with 3dm, also write STEM.3dm (Rhino, in the artifact's unit, "

@@ -7,7 +7,14 @@ from pathlib import Path
 import click
 
 from dgpc_cli.cli.finite_float import FiniteFloat
-from dgpc_cli.cli.options import check_writable, force_opt, format_opt, output_opt, progressbar
+from dgpc_cli.cli.options import (
+    accept_status_opt,
+    check_writable,
+    force_opt,
+    format_opt,
+    output_opt,
+    progressbar,
+)
 from dgpc_cli.cli.patch_set_members import on_members
 from dgpc_cli.cli.refine_option import RefineParam
 from dgpc_cli.stages.planarize_run import PlanarizeOptions, run_planarize_strips
@@ -58,12 +65,14 @@ from dgpc_cli.strips.planarize import (
                    "K = 2 where one template's K = 1 strips miss the deviation (1.5 %) or seam "
                    "step (1 % of the mean width) target and K = 2 lowers the seam step without "
                    "raising the deviation (stderr says so; data.parameters.refine_auto).")
+@accept_status_opt
 @output_opt
 @force_opt
 @format_opt
 @click.pass_context
 def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, seam_weight,
-                         ruling_fairness, max_ruling_turn, refine, output, force, fmt):
+                         ruling_fairness, max_ruling_turn, refine, accept_status, output, force,
+                         fmt):
     """Turn the geodesic strips of the net STEM into discrete developable strips (paper §6.2.4).
 
     Rulings follow the cross products N × N1 of neighbouring normals (averaged across flat
@@ -86,7 +95,7 @@ def planarize_strips_cmd(ctx, stem, strip_range, flat_angle, trim, per_strip, se
     opts = PlanarizeOptions(strip_range=strip_range, flat_angle=flat_angle, trim=trim,
                             per_strip=per_strip, seam_weight=seam_weight,
                             ruling_fairness=ruling_fairness, max_ruling_turn=max_ruling_turn,
-                            refine=refine)
+                            refine=refine, accept_status=accept_status)
     run_planarize_strips(stem, output, opts, force=force, fmt=fmt,
                          progressbar=lambda length, label: progressbar(ctx, length, label),
                          written=lambda out_json: click.echo(str(out_json)))

@@ -30,7 +30,11 @@ def report(stems, output, force):
             optimization with its input net at hand: principal directions over |λ1| + |λ2|,
             Fig. 13), PREFIX-clairaut.png (net with a recorded axis of revolution, Fig. 11),
             PREFIX-convergence.png (the solver history of an optimized net)
-    strips  PREFIX-width.png (the planar-quad strips coloured by width)
+    strips  PREFIX-width.png (the planar-quad strips coloured by their width across),
+            PREFIX-template.png (every developed strip overlaid on the template, its ends
+            magnified, Fig. 18) and PREFIX-deviation.png (the strips coloured by their
+            distance from the net in mm, seams stepping over 1 % of the width in red), both
+            when the net is at hand
     flat    PREFIX-overlay.png (one cell per congruence class), PREFIX-strips.png (the
             developed parts laid out like a sheet, Fig. 18)
     mold    PREFIX-profile.png (the meridian profile), PREFIX-pairing-netK.png (each panel on

@@ -8,6 +8,7 @@ import click
 
 from dgpc_cli.cli.length import LengthParam, length_help
 from dgpc_cli.cli.options import (
+    accept_status_opt,
     check_writable,
     force_opt,
     format_opt,
@@ -15,7 +16,6 @@ from dgpc_cli.cli.options import (
     output_opt,
 )
 from dgpc_cli.cli.patch_set_members import on_members
-from dgpc_cli.errors import OptionSlip
 from dgpc_cli.io.flat import csv_path
 from dgpc_cli.stages.unfold import CONGRUENCE_TOL_MM, STAGGER_FRACTION
 from dgpc_cli.stages.unfold_run import UnfoldOptions, run_unfold
@@ -29,24 +29,29 @@ from dgpc_cli.stages.unfold_run import UnfoldOptions, run_unfold
               default=f"{CONGRUENCE_TOL_MM:g}mm", show_default=True,
               help=length_help("Parts are copies of one template (a congruence class) when, "
                                "optimally aligned, no point of their outlines is farther "
-                               "apart than this (> 0)."))
+                               "apart than this (> 0).",
+                               plausible="up to 1 % of the parts' mean width"))
 @click.option("--stock-length", type=LengthParam(min=0, min_open=True),
               help=length_help("Cut every strip longer than this into boards no longer than "
                                "it (> 0): part ids S-v07.1, S-v07.2, ...; at rulings, or the "
-                               "strips of one template at the same template lines."))
+                               "strips of one template at the same template lines.",
+                               plausible="longer than the widest part, up to the longest "
+                                         "strip"))
 @click.option("--stagger", type=LengthParam(min=0),
               help=length_help("With --stock-length: no joint of a strip within this (>= 0, "
                                "along the geodesic) of a joint of the strips beside it "
                                f"[default: {STAGGER_FRACTION:g} × the stock length, "
                                "kept where the rulings allow it, with a warning where a "
-                               "joint cannot keep it]."))
+                               "joint cannot keep it].",
+                               plausible="up to the stock length"))
 @label_style_opt
+@accept_status_opt
 @output_opt
 @force_opt
 @format_opt
 @click.pass_context
-def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_style, output, force,
-           fmt):
+def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_style,
+           accept_status, output, force, fmt):
     """Develop the planar-quad strips of the strips artifact STEM into the plane (paper §6.2.4).
 
     Records per part the closed outline, the rulings (score lines), a label point, the edge
@@ -75,9 +80,7 @@ def unfold(ctx, stem, mirror_ok, congruence_tol, stock_length, stagger, label_st
         raise click.UsageError("--stagger goes with --stock-length")
     check_writable(output, force, csv_path(output), csv_path(output, "assembly"))
     opts = UnfoldOptions(congruence_tol=congruence_tol, label_style=label_style,
-                         mirror_ok=mirror_ok, stock_length=stock_length, stagger=stagger)
-    try:
-        run_unfold(stem, output, opts, force=force, fmt=fmt,
-                   written=lambda out_json: click.echo(str(out_json)))
-    except OptionSlip as slip:
-        raise click.UsageError(str(slip)) from None
+                         mirror_ok=mirror_ok, stock_length=stock_length, stagger=stagger,
+                         accept_status=accept_status)
+    run_unfold(stem, output, opts, force=force, fmt=fmt,
+               written=lambda out_json: click.echo(str(out_json)))

@@ -3,14 +3,12 @@
 The page only shows frames and forwards the designer's gestures to ``actions`` (an object with
 ``drag(u, v, target, end)``, ``pin(u, v)``, ``release(u, v)``, ``undo()``, ``redo()``,
 ``save()`` and ``fabrication(on)``); the solving happens elsewhere, off the page's threads.
-A frame (see ``stages.edit_session.Frame``) carries the net in its unit, a colour field per
+A frame (see ``dgpc_cli.edit.session.Frame``) carries the net in its unit, a colour field per
 vertex, the pleated and creased vertices, the handles and the status line.
 """
 
 from __future__ import annotations
 
-import contextlib
-import io
 import logging
 import threading
 
@@ -18,6 +16,17 @@ import numpy as np
 import viser
 
 from dgpc_cli.edit.colours import field_colours, legend
+from dgpc_cli.edit.page_input import (
+    BadInput,
+    direction,
+    guarded,
+    number,
+    vector,
+    within_reach,
+)
+from dgpc_cli.edit.viser_logs import route_viser_output
+from dgpc_cli.report.camera import outward_front, standard_views
+from dgpc_cli.report.scene import grid_quads
 
 log = logging.getLogger(__name__)
 
@@ -27,7 +36,7 @@ SURFACE, GEODESICS, FLAGGED, SELECTED = (205, 205, 200), (200, 40, 40), (255, 0,
 
 
 #: The initial camera's distance from the net's centre, in diagonals of its bounding box.
-CAMERA_DISTANCE = 0.9
+CAMERA_DISTANCE = 1.1
 #: Size of a handle's gizmo, in edge lengths of the net.
 GIZMO_SIZE = 3.0
 #: Width of its lines, in pixels (wider lines are easier to grab).
@@ -62,17 +71,17 @@ def geodesic_segments(f: np.ndarray) -> np.ndarray:
 
 
 def initial_camera(f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The initial camera (look-at point, position; up +z): the net's centre seen along its
-    normal at the middle, from ``CAMERA_DISTANCE`` diagonals of its bounding box."""
+    """The initial camera (look-at point, position; up +z): the report's axonometric view of
+    the net (:func:`~dgpc_cli.report.camera.standard_views`, seen from its outside: column 0
+    on the left, as in the report's elevation), from ``CAMERA_DISTANCE`` diagonals of its
+    bounding box."""
     pts = f.reshape(-1, 3)
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     centre = 0.5 * (lo + hi)
-    m, n = f.shape[:2]
-    normal = np.cross(f[-1, n // 2] - f[0, n // 2], f[m // 2, -1] - f[m // 2, 0])
-    normal = normal / (np.linalg.norm(normal) or 1.0)
-    if float(np.dot(normal, centre - pts.mean(axis=0))) < 0:
-        normal = -normal                      # from the side the net bulges towards
-    return centre, centre + CAMERA_DISTANCE * float(np.linalg.norm(hi - lo)) * normal
+    up = (0.0, 0.0, 1.0)
+    axonometric = standard_views(pts, up, outward_front(grid_quads(f), up))[0]
+    toward = axonometric.rotation[2]
+    return centre, centre + CAMERA_DISTANCE * float(np.linalg.norm(hi - lo)) * toward
 
 
 class EditPage:
@@ -83,17 +92,21 @@ class EditPage:
                  max_strain: float = 3e-4):
         self.actions = actions
         self.limit = max_strain
-        # a browser tab that closes mid-handshake is no error of the design session
-        logging.getLogger("websockets").setLevel(logging.CRITICAL)
-        banner = io.StringIO()
-        with contextlib.redirect_stdout(banner):     # viser prints its address: stdout is data
-            self.server = viser.ViserServer(host=host, port=port, label=title, verbose=False)
-        log.debug("%s", banner.getvalue())
-        self.server.gui.configure_theme(control_width="large", show_logo=False)
+        route_viser_output()            # viser's prints and errors: one stderr line each
+        self.server = viser.ViserServer(host=host, port=port, label=title, verbose=False)
+        # no public share link: the page stays where --host puts it
+        self.server.request_share_url = self._no_share
+        self.server.gui.configure_theme(control_width="large", show_logo=False,
+                                        show_share_button=False)
         self.server.scene.set_up_direction("+z")
         self.server.scene.configure_fog(1e9, 2e9, enabled=False)   # a far net stays vivid
         self.shape = first.f.shape[:2]
         m, n = self.shape
+        pts0 = first.f.reshape(-1, 3)
+        self.box = (pts0.min(axis=0), pts0.max(axis=0))    # the reach of a handle's target
+        self._accepted: dict[tuple[int, int], tuple[float, float, float]] = {}
+        self._targets: dict[tuple[int, int], tuple[float, float, float]] = {}
+        self._saved_handles: list | None = None
         self._lock = threading.RLock()
         self._gizmos: dict[tuple[int, int], object] = {}
         self._dragging: set[tuple[int, int]] = set()
@@ -117,7 +130,8 @@ class EditPage:
         # a point within a world unit of the ray, and a click handler above the points would
         # take the press meant for a gizmo's arrow in front of them
         self.lines = self.server.scene.add_line_segments(
-            "/geodesics", geodesic_segments(first.f), colors=GEODESICS, line_width=2.0)
+            "/geodesics", geodesic_segments(first.f), colors=GEODESICS, thickness=2.0,
+            thickness_units="screen")
         self.points = self.server.scene.add_point_cloud(
             "/field", f, colors=field_colours(first.field, max_strain),
             point_size=0.2 * self.scale, point_shape="circle")
@@ -148,16 +162,17 @@ class EditPage:
             save = gui.add_button("Save artifact")
             self.saved = gui.add_markdown("")
         with gui.add_folder("Fabrication"):
-            self.fab_on = gui.add_checkbox("Fabrication figures (when settled)", False)
+            self.fab_on = gui.add_checkbox("Fabrication figures", False)
             self.fabrication = gui.add_markdown("")
 
-        release.on_click(lambda _: self.selected and self.actions.release(*self.selected))
-        pin.on_click(lambda _: self.selected and self.actions.pin(*self.selected))
-        undo.on_click(lambda _: self.actions.undo())
-        redo.on_click(lambda _: self.actions.redo())
-        save.on_click(lambda _: self._save())
-        self.fab_on.on_update(lambda _: self.actions.fabrication(self.fab_on.value))
-        self.push.on_update(lambda _: self._pushed())
+        release.on_click(guarded("release")(
+            lambda _: self.selected and self.actions.release(*self.selected)))
+        pin.on_click(guarded("pin")(lambda _: self.selected and self.actions.pin(*self.selected)))
+        undo.on_click(guarded("undo")(lambda _: self.actions.undo()))
+        redo.on_click(guarded("redo")(lambda _: self.actions.redo()))
+        save.on_click(guarded("save")(lambda _: self._save()))
+        self.fab_on.on_update(guarded("fabrication switch")(lambda _: self._fabrication()))
+        self.push.on_update(guarded("push")(lambda _: self._pushed()))
 
     def _view(self, f: np.ndarray) -> None:
         look_at, position = initial_camera(f)
@@ -171,15 +186,28 @@ class EditPage:
         return f"http://{_url_host(self.server.get_host())}:{self.server.get_port()}/"
 
     # -- gestures ------------------------------------------------------------------------
+    def _no_share(self, *args, **kwargs) -> None:
+        log.warning("edit: the page asked for a public share link; refused (the page listens "
+                    "where --host says only)")
+
+    def _fabrication(self) -> None:
+        on = self.fab_on.value
+        if not isinstance(on, bool):
+            raise BadInput(f"fabrication switch: {on!r} is not true or false")
+        self.actions.fabrication(on)
+
+    @guarded("click")
     def _clicked(self, event) -> None:
         """Select the vertex nearest to the clicked ray; a vertex that is no handle becomes
         one, held where it is."""
         f = self._f.reshape(-1, 3)
-        o, d = np.asarray(event.ray_origin), np.asarray(event.ray_direction)
-        d = d / np.linalg.norm(d)
+        o = vector(event.ray_origin, "click: ray origin")
+        d = direction(event.ray_direction, "click: ray direction")
         rel = f - o
         along = rel @ d
         off = np.linalg.norm(rel - along[:, None] * d, axis=1)
+        if not (along > 0).any():
+            raise BadInput("click: the ray passes no vertex of the net")
         vid = int(np.argmin(np.where(along > 0, off, np.inf)))
         u, v = divmod(vid, self.shape[1])
         self.select((u, v))
@@ -205,13 +233,16 @@ class EditPage:
     def _pushed(self) -> None:
         """The push slider moved: drag the selected handle along the normal; the drag ends
         ``PUSH_SETTLE`` seconds after the last move."""
-        if self._resetting or self.selected is None:
+        if self._resetting:
             return
+        push = number(self.push.value, -PUSH_RANGE, PUSH_RANGE, "push")
         index = self.selected
+        if index is None:
+            return
         if self._push_base is None:
             self._push_base = (self._f[index].copy(), vertex_normal(self._f, *index))
         base, normal = self._push_base
-        target = tuple(float(c) for c in base + self.push.value * self.scale * normal)
+        target = tuple(float(c) for c in base + push * self.scale * normal)
         self.actions.drag(index[0], index[1], target, False)
         if self._push_timer is not None:
             self._push_timer.cancel()
@@ -224,9 +255,12 @@ class EditPage:
         self.saved.content = "saving…"
         self.actions.save()
 
+    @guarded("gizmo move")
     def _gizmo_moved(self, index: tuple[int, int], handle, event) -> None:
+        """A gizmo's drag: its start selects the handle; each move drags it to the gizmo's
+        position (checked: finite, within reach of the net); the end ends the drag (at the
+        last position accepted, where the end's own is refused)."""
         phase = getattr(event, "phase", "update")
-        log.debug("gizmo %s: %s at %s", index, phase, tuple(handle.position))
         if phase == "start":
             self._dragging.add(index)
             self.select(index)
@@ -234,7 +268,16 @@ class EditPage:
         end = phase == "end"
         if end:
             self._dragging.discard(index)
-        self.actions.drag(index[0], index[1], tuple(float(c) for c in handle.position), end)
+        try:
+            target = vector(handle.position, f"gizmo ({index[0]}, {index[1]})")
+            within_reach(target, self.box, f"gizmo ({index[0]}, {index[1]})")
+        except BadInput:
+            self._restore_gizmo(index)
+            if end and index in self._accepted:
+                self.actions.drag(index[0], index[1], self._accepted[index], True)
+            raise
+        self._accepted[index] = tuple(float(c) for c in target)
+        self.actions.drag(index[0], index[1], self._accepted[index], end)
 
     # -- frames --------------------------------------------------------------------------
     def show(self, frame) -> None:
@@ -264,36 +307,63 @@ class EditPage:
                     self.status.content = status
                 if frame.fabrication is not None:
                     self.fabrication.content = _fabrication_markdown(frame.fabrication)
-                elif not frame.settled and self.fabrication.content:
+                elif not self.fab_on.value and self.fabrication.content:
                     self.fabrication.content = ""
+                self._unsaved(frame)
             if self.selected is not None:
                 self.select(self.selected)
 
     def _sync_gizmos(self, frame) -> None:
         wanted = {(u, v): target for u, v, target in frame.handles}
+        self._targets = wanted
         for index in list(self._gizmos):
             if index not in wanted:
                 self._gizmos.pop(index).remove()
         for index, target in wanted.items():
             gizmo = self._gizmos.get(index)
             if gizmo is None:
-                gizmo = self.server.scene.add_transform_controls(
-                    f"/handles/h{index[0]}_{index[1]}", scale=GIZMO_SIZE * self.scale,
-                    line_width=GIZMO_LINE, disable_rotations=True, depth_test=False,
-                    position=target)
-                gizmo.on_update(lambda event, i=index, g=gizmo: self._gizmo_moved(i, g, event))
-                self._gizmos[index] = gizmo
+                self._new_gizmo(index, target)
             elif index not in self._dragging and frame.settled:
                 gizmo.position = target
 
-    def saved_to(self, text: str) -> None:
-        self.saved.content = text
+    def _new_gizmo(self, index: tuple[int, int], target) -> None:
+        """A gizmo for the handle ``index`` at ``target`` (one there before is replaced)."""
+        old = self._gizmos.pop(index, None)
+        if old is not None:
+            old.remove()
+        gizmo = self.server.scene.add_transform_controls(
+            f"/handles/h{index[0]}_{index[1]}", scale=GIZMO_SIZE * self.scale,
+            line_width=GIZMO_LINE, disable_rotations=True, depth_test=False,
+            position=target)
+        gizmo.on_update(lambda event, i=index, g=gizmo: self._gizmo_moved(i, g, event))
+        self._gizmos[index] = gizmo
+
+    def _restore_gizmo(self, index: tuple[int, int]) -> None:
+        """Put the gizmo of ``index`` back where the handle is, after a refused position
+        (viser keeps what it was sent, of any shape: the gizmo is made anew)."""
+        with self._lock:
+            target = self._accepted.get(index, self._targets.get(index))
+            if target is not None and index in self._gizmos:
+                self._new_gizmo(index, target)
+
+    def saved_to(self, text: str, saved: bool = False) -> None:
+        """Say what the last save did (``saved``: it wrote the artifact of the handles on
+        screen; the line then changes once they change: :meth:`_unsaved`)."""
+        with self._lock:
+            self.saved.content = text
+            self._saved_handles = sorted(self._targets.items()) if saved else None
+
+    def _unsaved(self, frame) -> None:
+        """After a save, the first frame whose handles differ says the design changed since."""
+        if self._saved_handles is None:
+            return
+        if sorted((u, v, t) for u, v, t in frame.handles) != [
+                (*i, t) for i, t in self._saved_handles]:
+            self.saved.content = "Changed since the last save: **not saved**"
+            self._saved_handles = None
 
     def stop(self) -> None:
-        banner = io.StringIO()
-        with contextlib.redirect_stdout(banner):     # viser says it stopped: stdout is data
-            self.server.stop()
-        log.debug("%s", banner.getvalue())
+        self.server.stop()
 
 
 def _url_host(host: str) -> str:
@@ -301,8 +371,9 @@ def _url_host(host: str) -> str:
 
 
 def _status_markdown(frame) -> str:
-    mark = "✅" if frame.state == "converged" else ("⏳" if not frame.settled else "⚠️")
-    line = f"{mark} **{frame.state.replace('_', ' ')}**: {frame.message}"
+    """The status line: the state in words (no emoji: a browser without an emoji font shows
+    an empty box), the run's iterations and time where the net on screen is that run's."""
+    line = f"**{frame.state.replace('_', ' ')}**: {frame.message}"
     if frame.iterations:
         line += f"  \n_{frame.iterations} iterations, {1000 * frame.seconds:.0f} ms_"
     return line
@@ -318,22 +389,48 @@ def _field_markdown(frame, limit: float) -> str:
         flags.append(f"creased at {int(frame.creased.sum())} vertices")
     text = f"Colour: {frame.field_name}, largest **{worst:.3g}** ({legend(limit)})"
     if flags:
-        text += "  \n⚠️ " + "; ".join(flags) + " (magenta)"
+        text += "  \n**Flagged**: " + "; ".join(flags) + " (magenta)"
     return text
 
 
-def _fabrication_markdown(fab: dict) -> str:
-    lines = []
-    strips = fab.get("strips", {})
+def _percent(value) -> str:
+    return "n/a" if value is None or value != value else f"{100 * value:.2f} %"
+
+
+def _strips_markdown(strips: dict | None) -> str:
+    """The strips' figures (:mod:`dgpc_cli.edit.fabrication`), saying where they come from."""
+    if strips is None:
+        return ("**Strips**: the figures of planarize-strips and unfold follow when the net "
+                "settles")
     if "error" in strips:
-        lines.append(f"**Strips**: {strips['error']}")
+        return f"**Strips**: {strips['error']}"
+    k = strips["templates"]
+    quantities = strips["quantities"]
+    templates = (f"one template ({quantities[0]} copies)" if k == 1 else
+                 f"{k} templates ({' + '.join(map(str, quantities))})")
+    how = ("bent from one template" if strips["method"] == "template"
+           else "each on its own (no shared template)")
+    refine = f", {strips['refine']} rulings per net row" if strips["refine"] > 1 else ""
+    if strips["source"] == "live":
+        source = ("_live estimate while the net moves: the last strips bent onto it; "
+                  "planarize-strips and unfold give theirs when it settles_")
     else:
-        lines.append(f"**Strips**: {strips['strips']} strips in {strips['classes']} congruence "
-                     f"classes ({', '.join(map(str, strips['quantities']))}); class deviation "
-                     f"{strips['class_deviation']:.2g} of the length, strip deviation "
-                     f"{strips['strip_deviation']:.2g} of the width")
-    mold = fab.get("mold", {})
-    if "error" in mold:
+        source = "_as planarize-strips and unfold make them (their defaults)_"
+    missed = f"; **misses** {', '.join(strips['missed'])}" if strips["missed"] else ""
+    return (f"**Strips**: {strips['strips']} strips, {how}{refine}: **{templates}**; "
+            f"deviation from the net {_percent(strips['deviation'])} of the width, seam step "
+            f"{_percent(strips['seam_step'])} (targets 1.5 %, 1 %){missed}  \n{source}")
+
+
+def _fabrication_markdown(fab: dict) -> str:
+    pending = fab.get("pending")
+    lines = [] if pending and fab.get("strips") is None else [_strips_markdown(fab.get("strips"))]
+    if pending:
+        lines.append("**Strips**: planarize-strips and unfold are at work on the settled net")
+    mold = fab.get("mold")
+    if mold is None:
+        lines.append("**Mold**: when the net settles")
+    elif "error" in mold:
         lines.append(f"**Mold**: {mold['error']}")
     else:
         pieces = ", ".join(f"{p['id']} ({p['length']:.3g})" for p in mold["pieces"]) or "none"

@@ -12,6 +12,7 @@ from dgpc_cli.core.layout import NetLayout
 from dgpc_cli.core.problem import Problem, constraint_error, mean_edge_length
 from dgpc_cli.core.solver import Schedule, SolverResult, guided_projection
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.units import mm_per_unit
 from dgpc_cli.metrics.degenerate import degeneracies
 from dgpc_cli.metrics.residuals import gpc_angle_defect, pleat
 from dgpc_cli.metrics.strain import strain
@@ -446,8 +447,33 @@ def _worst_rows(per_vertex: np.ndarray, limit: float) -> str:
     return "rows " + ", ".join(f"{u} ({per_row[u]:.2e})" for u in worst)
 
 
+#: A handle nearer its target than this (mm) is reached.
+HANDLE_REACHED_MM = 1e-3
+
+
+def missed_handle(f: np.ndarray, f_input: np.ndarray, handles, units: str) -> str | None:
+    """What a run that stopped short says of its handles (``f``, ``f_input`` and the
+    ``handles`` ``(ids, targets)`` in mm): the handle farthest from its target, by how much,
+    and how far it was dragged, in ``units``; None where every handle is reached."""
+    if handles is None or handles[0] is None:
+        return None
+    ids, targets = np.asarray(handles[0], np.int64), np.asarray(handles[1], float)
+    miss = np.linalg.norm(f.reshape(-1, 3)[ids] - targets, axis=1)
+    k = int(np.argmax(miss))
+    if not miss[k] > HANDLE_REACHED_MM:
+        return None
+    drag = float(np.linalg.norm(targets[k] - f_input.reshape(-1, 3)[ids[k]]))
+    u, v = divmod(int(ids[k]), f.shape[1])
+    mm = mm_per_unit(units)
+    return (f"handle [{u}, {v}] stopped {miss[k] / mm:.3g} {units} short of its target "
+            f"(dragged {drag / mm:.3g} {units}): the net cannot follow this drag; drag it "
+            "less or in more --steps, pin fewer vertices (each pin takes a freedom the "
+            "bending needs), or move its target")
+
+
 def judge(outcome: OptimizeOutcome, f_input: np.ndarray, *, mode: str,
-          max_strain: float = TOL.max_strain, gpc_tol: float = TOL.gpc_tol) -> tuple[str, str]:
+          max_strain: float = TOL.max_strain, gpc_tol: float = TOL.gpc_tol,
+          handles=None, units: str = "mm") -> tuple[str, str]:
     """The state and message of an optimized net (SPEC §4): never ``converged`` on a folded,
     collapsed or pleated net (state ``degenerate``, naming the rows and columns, see
     :func:`~dgpc_cli.metrics.degenerate.degeneracies`, with an edge shorter than
@@ -456,7 +482,9 @@ def judge(outcome: OptimizeOutcome, f_input: np.ndarray, *, mode: str,
     ``converged`` only when every quad is within ``max_strain`` of the surface of revolution
     extract-mold builds from the net (edges and diagonals); in isometric mode only when the
     largest strain against the input (§6.1) is at most ``max_strain`` and the gpc angle defect
-    at most ``gpc_tol`` (radians).
+    at most ``gpc_tol`` (radians). A run that stopped short (``stagnated``, ``max_iter``)
+    with ``handles`` (``(ids, targets)`` in mm) names the handle it missed, by how much in
+    ``units``, and what to try (:func:`missed_handle`).
     """
     f = outcome.f
     # The edge floor is the one of `inspect`'s edges.folded (10 % of the mean edge): a net that
@@ -469,7 +497,10 @@ def judge(outcome: OptimizeOutcome, f_input: np.ndarray, *, mode: str,
         return "pleated", (f"period-2 pleat across the geodesics of "
                            f"{float(corrugation.max()):.3g} × the mean edge at "
                            f"{_worst_rows(corrugation, TOL.pleat)}")
-    if not outcome.converged or mode not in ("revolution", "isometric"):
+    if not outcome.converged:
+        missed = missed_handle(f, f_input, handles, units)
+        return outcome.status, outcome.message + (f"; {missed}" if missed else "")
+    if mode not in ("revolution", "isometric"):
         return outcome.status, outcome.message
     misses = []
     if mode == "revolution":

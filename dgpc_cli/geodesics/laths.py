@@ -140,18 +140,22 @@ def crossing_gap(f_a: np.ndarray, f_b: np.ndarray, gap: float | None = None) -> 
     return float(GAP * 0.5 * (mean_edge_length(f_a) + mean_edge_length(f_b)))
 
 
-def gap_slip(f_a: np.ndarray, f_b: np.ndarray, gap, units: str) -> str | None:
-    """The usage error for a plain ``--gap`` (a :class:`~dgpc_cli.cli.length.Length` or None)
-    in the nets' unit ``units`` longer than the nets' mean edge, that was likely meant in mm
-    (:meth:`~dgpc_cli.cli.length.Length.unit_slip`), if any."""
+def checked_gap(f_a: np.ndarray, f_b: np.ndarray, gap, units: str) -> float | None:
+    """``--gap`` (a :class:`~dgpc_cli.io.length.Length` or None: the default) in the nets'
+    unit ``units``, held to the rule of every length
+    (:meth:`~dgpc_cli.io.length.Length.check`: a plain number is plausible up to the nets'
+    mean edge, a gap wider than their quads)."""
     from dgpc_cli.core.problem import mean_edge_length
+    from dgpc_cli.io.length import Span
     from dgpc_cli.io.units import mm_per_unit
 
     if gap is None:
         return None
     edge = 0.5 * (mean_edge_length(f_a) + mean_edge_length(f_b))
-    return gap.unit_slip("--gap", units, edge * mm_per_unit(units),
-                         f"the nets' mean edge ({edge:.4g} {units})", "the nets'")
+    mm = gap.check("--gap", units, Span(0.0, edge * mm_per_unit(units), "gap", low_open=True,
+                                        high_text=f"the nets' mean edge ({edge:.4g} {units})"),
+                   "the nets'")
+    return mm / mm_per_unit(units)
 
 
 def gridshell(f_a: np.ndarray, f_b: np.ndarray, *, gap: float | None = None):

@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -11,6 +12,10 @@ import numpy as np
 from ..errors import DgpcError
 from .coordinates import bad_rows, coordinate_problem
 from .jsonable import load_schema, read_json, validate
+
+#: The latest event time a drags file may give, in seconds (a replay runs at most as long as
+#: its events' span, so at most this long before its net settles).
+MAX_EVENT_TIME = 3600.0
 
 
 @dataclass(frozen=True)
@@ -30,7 +35,8 @@ class DragEvent:
 def read_drags(path: str | Path, shape: tuple[int, int]) -> list[DragEvent]:
     """The events of a drags file, in time order. DgpcError (one line naming the file and the
     entry, e.g. ``events[3].target``): invalid JSON, schema violation, an index outside the
-    m×n grid, a drag without a target, a non-finite number, times that go back."""
+    m×n grid, a drag without a target, a non-finite number, a time beyond
+    :data:`MAX_EVENT_TIME`, times that go back."""
     path = Path(path)
     m, n = (int(s) for s in shape)
     doc = read_json(path)
@@ -49,6 +55,9 @@ def read_drags(path: str | Path, shape: tuple[int, int]) -> list[DragEvent]:
             raise DgpcError(f"events[{k}].target: {coordinate_problem(np.asarray(target))}",
                             source=path)
         time = float(entry["time"])
+        if not (math.isfinite(time) and 0 <= time <= MAX_EVENT_TIME):
+            raise DgpcError(f"events[{k}].time: {time:g} s is not a time from 0 to "
+                            f"{MAX_EVENT_TIME:g} s", source=path)
         if events and time < events[-1].time:
             raise DgpcError(f"events[{k}].time: {time:g} s is before the event above it",
                             source=path)

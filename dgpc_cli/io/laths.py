@@ -65,7 +65,8 @@ def format_cut_list(laths, crossings) -> bytes:
 
 
 def laths_files(stem: str | Path, laths, crossings, *, units: str, inputs: dict,
-                parameters: dict, metrics: dict) -> dict[Path, bytes]:
+                parameters: dict, metrics: dict, status: dict | None = None
+                ) -> dict[Path, bytes]:
     """The bytes of ``STEM.json``, ``STEM.obj`` and ``STEM.csv`` (nothing written); lengths in
     the nets' ``units``."""
     json_path, obj_path = artifact_paths(stem)
@@ -78,7 +79,7 @@ def laths_files(stem: str | Path, laths, crossings, *, units: str, inputs: dict,
                       "B": sum(lt.family == "B" for lt in laths)},
             "crossings": int(len(crossings.a))}
     doc = make_envelope(KIND, inputs=inputs, parameters=parameters, data=data, metrics=metrics,
-                        status={"state": "ok"})
+                        status={"state": "ok", **(status or {})})
     json_bytes = dumps_json(doc)
     validate_envelope(json.loads(json_bytes), KIND, json_path)
     return {json_path: json_bytes, obj_path: obj_bytes, csv_path: csv_bytes}

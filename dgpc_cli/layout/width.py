@@ -45,6 +45,24 @@ MAX_COLS = 101
 T = TypeVar("T")
 
 
+def plausible_spans(diagonal: float, units: str) -> dict:
+    """Where a plain ``--edge-length`` and ``--strip-width`` are plausible on a mesh whose
+    bounding-box diagonal is ``diagonal`` (in ``units``): an edge up to half the diagonal (a
+    net of three columns at least), a strip width from a thousandth of the diagonal to the
+    diagonal (:class:`~dgpc_cli.io.length.Span`, mm; the rule of every length,
+    :mod:`dgpc_cli.io.length`)."""
+    from dgpc_cli.io.length import Span
+
+    k = mm_per_unit(units)
+    return {"--edge-length": Span(0.0, 0.5 * diagonal * k, "edge", low_open=True,
+                                  high_text=f"half the mesh's diagonal ({0.5 * diagonal:.4g} "
+                                            f"{units})"),
+            "--strip-width": Span(1e-3 * diagonal * k, diagonal * k, "strip width",
+                                  low_text=f"a thousandth of the mesh's diagonal "
+                                           f"({1e-3 * diagonal:.4g} {units})",
+                                  high_text=f"the mesh's diagonal ({diagonal:.4g} {units})")}
+
+
 def default_limit(units: str, units_given: bool) -> float | None:
     """The largest strip width without ``--strip-width``, in ``units``: the default for a mesh
     whose unit is given, None for a mesh without one."""
@@ -179,10 +197,26 @@ def widened_choice(mesh, first: tuple, make: Callable[[int], tuple], cols: int |
     return kept["choice"], width_record(limit, given, widen_cols, plain, plain[-1])
 
 
+def require_met(record: dict | None, units: str, what: str = "") -> None:
+    """Refuse (DgpcError naming ``--strip-width``, exit 1, before anything is written) a net
+    wider than a *given* ``--strip-width`` where ``init`` chose the columns: no net it may
+    make meets the request (``--strip-width 1e-9m``). The default limit, and a given one that
+    given ``--cols`` or ``--edge-length`` win over, only warn (:func:`tell`)."""
+    if not record or record["within"] or not (record["given"] and record["chooses_columns"]):
+        return
+    raise DgpcError(f"{what}{record['limit']:.4g} {units} cannot be met: the strips are up to "
+                    f"{record['widest']:.4g} {units} wide with {record['cols']} columns, and "
+                    f"init makes at most {MAX_COLS} columns in {WIDEN_STEPS} tries; give a "
+                    "larger --strip-width, or --patches to split the mesh",
+                    source="--strip-width")
+
+
 def tell(record: dict | None, units: str, say: Callable[[str], None] | None,
          what: str = "", options: str | None = None) -> None:
     """Say the :func:`width_line` of ``record``: a net made within the limit as ``init``'s
-    progress (``say``, when given), a net wider than the limit as a warning."""
+    progress (``say``, when given), a net wider than the limit as a warning; a given limit
+    that cannot be met is an error (:func:`require_met`)."""
+    require_met(record, units, what)
     line = width_line(record, units, what, options)
     if line is None:
         return

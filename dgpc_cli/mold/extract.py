@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.length import Span
 from dgpc_cli.io.units import mm_per_unit
 from dgpc_cli.mold.panels import (
     Piece,
@@ -251,17 +252,17 @@ def extract_mold(nets: list[tuple[str, np.ndarray]], *, segments: float | None =
                 piece_of_row=piece_of_row, sector_angle=sector, panel_size=K, choice=choice)
 
 
-def max_length_slip(mold: Mold, max_length, units: str) -> str | None:
-    """The usage error for a plain ``--mold-max-length`` (a
-    :class:`~dgpc_cli.cli.length.Length` or None) in the nets' unit ``units`` longer than the
-    whole mold along its meridian, that was likely meant in mm
-    (:meth:`~dgpc_cli.cli.length.Length.unit_slip`), if any."""
+def check_max_length(mold: Mold, max_length, units: str) -> None:
+    """OptionSlip (a usage error) where ``--mold-max-length`` (a
+    :class:`~dgpc_cli.io.length.Length` or None) breaks the rule of every length
+    (:meth:`~dgpc_cli.io.length.Length.check`): a plain number is plausible up to the whole
+    mold's length along its meridian."""
     if max_length is None:
-        return None
+        return
     length = float(np.sum(mold.meridian.l))
-    return max_length.unit_slip("--mold-max-length", units, length * mm_per_unit(units),
-                                f"the mold ({length:.4g} {units} along the meridian)",
-                                "the nets'")
+    max_length.check("--mold-max-length", units, Span(
+        0.0, length * mm_per_unit(units), "mold piece", low_open=True,
+        high_text=f"the whole mold ({length:.4g} {units} along the meridian)"), "the nets'")
 
 
 def _check_panels(per_net: list[NetPanels], row_starts: np.ndarray, K: int, max_strain: float,

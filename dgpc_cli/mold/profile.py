@@ -74,7 +74,7 @@ def check_revolution(widths: NetWidths, tol: float, source: str) -> None:
     rows = ", ".join(f"rows {u}-{u + 1} ({res[u]:.2e})" for u in worst)
     raise DgpcError(f"not isometric to a surface of revolution: the ratio of v-edge lengths "
                     f"(equation (5)) varies along {bad.size} of {res.size} row pairs beyond "
-                    f"--tol {tol:g}; worst: {rows}", source=source)
+                    f"--revolution-tol {tol:g}; worst: {rows}", source=source)
 
 
 def check_same_surface(ref: NetWidths, other: NetWidths, tol: float, source: str,
@@ -91,13 +91,13 @@ def check_same_surface(ref: NetWidths, other: NetWidths, tol: float, source: str
         raise DgpcError(f"not isometric to the same surface of revolution as {ref_source}: "
                         f"its strip widths are not proportional to those of {ref_source} "
                         f"(the ratio varies by {q_spread:.2e} relative over the rows, worst at "
-                        f"row {u}; --tol {tol:g})", source=source)
+                        f"row {u}; --revolution-tol {tol:g})", source=source)
     dl = np.abs(other.l - ref.l) / ref.l
     if not float(dl.max()) <= tol:
         u = int(np.argmax(dl))
         raise DgpcError(f"not isometric to the same surface of revolution as {ref_source}: "
                         f"its meridian edges differ by up to {float(dl.max()):.2e} relative "
-                        f"(rows {u}-{u + 1}; --tol {tol:g})", source=source)
+                        f"(rows {u}-{u + 1}; --revolution-tol {tol:g})", source=source)
 
 
 @dataclass(frozen=True)

@@ -4,14 +4,18 @@ against its neighbours).
 
 The mark lies inside the part's first cell (the quad between its first-row end and its first
 score line; the second where the first is too short, within the part's first half), on the
-labels' layer: a chevron whose apex points at the first-row end, and beyond
-it, along the strip, the row's number (``R0``) read upright (beside the chevron, across the
-strip, where the first cell is too short for that). It is as large as the part's width
-at that end allows (:data:`WIDTH_FRACTION`, capped at the labels' :data:`MAX_TEXT_MM`), shrunk
-until it keeps the labels' clearance (:data:`CLEARANCE_MM` plus :data:`CLEARANCE_H` of its
-height) from the cut outline and every score line; on a part of one cell it keeps to the
-first :data:`ONE_CELL_REACH` of the cell. A part too small for a mark of :data:`MIN_MARK_MM`
-gets none. The part's id label then goes beyond the mark (:func:`beyond`).
+labels' layer, on the part's axis whatever the part's aspect ratio: a chevron whose apex
+points along the part at its first-row end, and beyond it, along the part, the row's number
+(``R0``) read upright (beside the chevron, across the part, only where neither cell has room
+for it along the part: cells a few mm long). The axis is the mean direction of the part's two
+geodesics over its first cell (:func:`_frame`). Where the first cell is short on one side (a
+slanted ruling: a trapezoid) the mark moves across the part towards its long side
+(:data:`ACROSS`) rather than turn. It is as large as the part's width at that end allows
+(:data:`WIDTH_FRACTION`, capped at the labels' :data:`MAX_TEXT_MM`), shrunk until it keeps
+the labels' clearance (:data:`CLEARANCE_MM` plus :data:`CLEARANCE_H` of its height) from the
+cut outline and every score line; on a part of one cell it keeps to the first
+:data:`ONE_CELL_REACH` of the cell. A part too small for a mark of :data:`MIN_MARK_MM` gets
+none. The part's id label then goes beyond the mark (:func:`beyond`).
 """
 
 from __future__ import annotations
@@ -35,6 +39,9 @@ MIN_MARK_MM = 1.5
 ONE_CELL_REACH = 0.45
 #: Tried heights: the largest times these factors, largest first.
 SHRINK = 0.85 ** np.arange(24)
+#: Tried offsets of the mark across the part, as fractions of its width at the first end,
+#: nearest the axis first.
+ACROSS = np.array([0.0, 0.125, -0.125, 0.25, -0.25, 0.375, -0.375])
 
 
 @dataclass(frozen=True)
@@ -50,19 +57,27 @@ class EndMark:
 
 
 def _frame(A: np.ndarray, B: np.ndarray):
-    """The first-row end's midpoint, the unit direction into the part, the unit normal, the
-    end's width."""
+    """The first-row end's midpoint, the unit direction into the part along its axis (the
+    mean of its two geodesics' directions over the first cell), the unit normal, the end's
+    width."""
     e = 0.5 * (A[0] + B[0])
-    d = 0.5 * (A[1] + B[1]) - e
+    d = np.zeros(2)
+    for t in (A[1] - A[0], B[1] - B[0]):
+        size = float(np.linalg.norm(t))
+        if size > 0:                           # a pointed end: the other geodesic only
+            d = d + t / size
+    if not np.linalg.norm(d) > 1e-9:           # degenerate: the midpoints' direction
+        d = 0.5 * (A[1] + B[1]) - e
     d = d / np.linalg.norm(d)
     n = np.array([-d[1], d[0]])
     return e, d, n, float(abs((B[0] - A[0]) @ n))
 
 
-def _shapes(e, d, n, t: float, h: float, text: str, beside: bool):
-    """The chevron (apex at ``e + t d``) and the row's label at height ``h``: beyond the
-    chevron along the part, or ``beside`` it, reading across the part."""
-    apex = e + t * d
+def _shapes(e, d, n, t: float, s: float, h: float, text: str, beside: bool = False):
+    """The chevron (apex at ``e + t d + s n``, opening along ``d``) and the row's label at
+    height ``h``: beyond it along the part, reading along the part; or, ``beside`` it (the
+    last resort of a cell too short for that), across the part."""
+    apex = e + t * d + s * n
     gap = CLEARANCE_MM + CLEARANCE_H * h
     chevron = np.array([apex + 0.6 * h * d + 0.5 * h * n, apex, apex + 0.6 * h * d - 0.5 * h * n])
     along = np.degrees(np.arctan2(d[1], d[0]))
@@ -101,28 +116,38 @@ def end_mark(outline, score, A, B, row: float) -> EndMark | None:
     scored = shapely.union_all(lines) if lines else None
     top = min(WIDTH_FRACTION * width, MAX_TEXT_MM)
     half = 0.5 * min(float((A[-1] - e) @ d), float((B[-1] - e) @ d))
+    cells = []
     for k in (0, 1) if len(A) >= 3 else (0,):
         cell = Polygon([A[k], A[k + 1], B[k + 1], B[k]]).buffer(0).buffer(1e-9)
         near = max(float((A[k] - e) @ d), float((B[k] - e) @ d))    # past a slanted end
-        limit = min(float((A[k + 1] - e) @ d), float((B[k + 1] - e) @ d))
+        # to the cell's far side where it is longest: across the part the mark moves there
+        # (the cell itself bounds it)
+        limit = max(float((A[k + 1] - e) @ d), float((B[k + 1] - e) @ d))
         if len(A) == 2:
             limit = near + ONE_CELL_REACH * (limit - near)
         limit = min(limit, half)                     # nearer the first end than the other
-        found = _fit(e, d, n, top, near, limit, row_text(row), room, cell, scored)
+        cells.append((k, cell, near, limit))
+    # the number along the part in the first cell, else the second; only where neither has
+    # room for that, beside the chevron (a cell a few mm long: a scale model's)
+    for beside, (k, cell, near, limit) in product((False, True), cells):
+        found = _fit(e, d, n, top, width, near, limit, row_text(row), room, cell, scored,
+                     beside)
         if found is not None:
             return EndMark(*found, cell=k)
     return None
 
 
-def _fit(e, d, n, top, near, limit, text, room, cell, scored):
+def _fit(e, d, n, top, width, near, limit, text, room, cell, scored, beside=False):
     """``(chevron, label, reach)`` of the largest mark from ``near`` to ``limit`` along ``d``
-    inside ``room`` and ``cell`` with its clearance, crossing no ``scored`` line; None."""
+    inside ``room`` and ``cell`` with its clearance, crossing no ``scored`` line, at an offset
+    across the part of :data:`ACROSS` × ``width`` (its label ``beside`` the chevron or not,
+    :func:`_shapes`); None."""
     for h in min(top, (limit - near) / 0.7) * SHRINK:    # the chevron alone is 0.6 h deep
         if h < MIN_MARK_MM:
             return None
         gap = CLEARANCE_MM + CLEARANCE_H * h
-        for t, beside in product(near + gap + h * np.arange(0.0, 4.0, 0.25), (False, True)):
-            chevron, label = _shapes(e, d, n, t, h, text, beside)
+        for s, t in product(ACROSS * width, near + gap + h * np.arange(0.0, 4.0, 0.25)):
+            chevron, label = _shapes(e, d, n, t, s, h, text, beside)
             far = float(np.max(np.concatenate([chevron, label.box()]) @ d - e @ d)) + gap
             if far > limit:
                 continue

@@ -17,13 +17,28 @@ waterjet   kerf 1              1           25   (spacing 2 mm)
 ``--kerf``/``--tool-diameter`` set the cut width (the spacing follows: width + clearance);
 ``--spacing`` and ``--margin`` given explicitly win, but a spacing below the cut width is
 refused (the tool would cut into the neighbouring part).
+
+Plausible values (:class:`~dgpc_cli.io.length.Span`; a plain number outside is a usage error
+naming both readings, ``--tool-diameter 0.006`` being a 0.006 mm bit where 6 mm was meant):
+a router bit 0.5–50 mm (:data:`BIT_SPAN`), a kerf 0.02–10 mm (:data:`KERF_SPAN`), a margin 0
+or at least 1 mm (:data:`MARGIN_SPAN`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["TOOLS", "Tool", "ToolSettings", "resolve_tool"]
+from ..io.length import Span
+
+__all__ = ["BIT_SPAN", "KERF_SPAN", "MARGIN_SPAN", "TOOLS", "Tool", "ToolSettings",
+           "resolve_tool"]
+
+#: A router bit's diameter (mm): from the finest engraving bits to the largest cutters.
+BIT_SPAN = Span(0.5, 50.0, "router bit")
+#: A laser's or a water jet's kerf (mm): a fine laser's 0.02 mm to a coarse water jet's.
+KERF_SPAN = Span(0.02, 10.0, "kerf")
+#: A sheet's margin (mm): 0 (parts to the edge) or at least 1 mm.
+MARGIN_SPAN = Span(1.0, None, "margin", zero_ok=True)
 
 
 @dataclass(frozen=True)

@@ -111,7 +111,8 @@ def error_text(error: float, units: str) -> str:
 def overlay_figure(parts: list[dict], classes: list[dict], units: str):
     """All parts aligned on their class representatives, one cell (axes gid ``class-<id>``)
     per congruence class, every cell at one scale, with a scale bar (gid ``scale-bar``) under
-    the grid."""
+    the grid; the score lines are the representative's (a class whose copies are scored each
+    for its own bending says so in its title)."""
 
     by_id = {p["id"]: p for p in parts}
     drawings = []
@@ -145,17 +146,22 @@ def overlay_figure(parts: list[dict], classes: list[dict], units: str):
         bottom = (H - 0.55 - (r + 1) * cell_h + 0.04) / H
         ax = fig.add_axes((left, bottom, (width - 0.1) / W, (cell_h - 0.36) / H))
         ax.set_gid(f"class-{cls['id']}")
-        for outline, segs in zip(outlines, scores, strict=True):
+        for outline in outlines:
             ax.plot(*_closed(outline).T, lw=1.0, color=CUT, alpha=0.8)
-            for seg in segs:
-                ax.plot(*seg.T, lw=0.6, color=SCORE, alpha=0.6)
+        # the representative's score lines once: shared ones coincide on every copy, and a
+        # copy's own ones (``per copy``) are on its own DXF, not stacked here
+        for seg in scores[cls["members"].index(cls["representative"])]:
+            ax.plot(*seg.T, lw=0.6, color=SCORE, alpha=0.8)
         allp = np.concatenate(outlines)
         mid = 0.5 * (allp.min(axis=0) + allp.max(axis=0))
         ax.set_xlim(mid[0] - half_w, mid[0] + half_w)
         ax.set_ylim(mid[1] - half_h, mid[1] + half_h)
         ax.set_aspect("equal", adjustable="box")
         ax.set_axis_off()
-        ax.set_title(f"{cls['id']}: {cls['quantity']} × {cls['representative']}, "
+        per_copy = cls.get("score_lines") == "per copy"
+        scored = (f" (each scored for its bending, {cls['representative']}'s shown)"
+                  if per_copy and cls["quantity"] > 1 else "")
+        ax.set_title(f"{cls['id']}: {cls['quantity']} × {cls['representative']}{scored}, "
                      f"error ≤ {error_text(cls['max_error'], units)}", fontsize=LABEL_PT,
                      pad=2)
     # the scale bar, in an axes as wide as a cell and at the cells' scale

@@ -36,7 +36,7 @@ from .scene import Polygons, Segments, grid_quads
 from .views import ColourBar, views_figure
 
 __all__ = ["Reference", "curvature_per_quad", "field_figure", "laths_figure",
-           "strain_figure", "vertex_to_quad", "width_per_quad"]
+           "strain_figure", "strain_scale_top", "vertex_to_quad", "width_per_quad"]
 
 #: Colour of quads without a value.
 MISSING = (0.85, 0.85, 0.85, 1.0)
@@ -226,14 +226,26 @@ def handle_marks(points: np.ndarray, size: float) -> Segments:
     return Segments(segs, HANDLE, "handles", linewidth=2.2)
 
 
+def strain_scale_top(amount: np.ndarray, tolerance: float | None) -> float:
+    """The top of a strain figure's colour scale: the largest finite strain in ``amount``,
+    at least ``tolerance`` (a strain within the tolerance is never the scale's red; round-off
+    of an unmoved net stays at its pale bottom), 1 where there is neither."""
+    finite = np.asarray(amount, float)[np.isfinite(amount)]
+    top = float(finite.max()) if finite.size and finite.max() > 0 else 0.0
+    return max(top, tolerance or 0.0) or 1.0
+
+
 def strain_figure(f: np.ndarray, f0: np.ndarray, *, title: str, unit: str,
-                  up=(0.0, 0.0, 1.0), front=None, handles: dict | None = None):
+                  up=(0.0, 0.0, 1.0), front=None, handles: dict | None = None,
+                  tolerance: float | None = None):
     """Paper Fig. 13: the strain of the net ``f`` against ``f0`` (both ``(m, n, 3)``), the area
     around each vertex coloured by ``|λ1| + |λ2|`` (gid ``strain``) under the principal
     directions at the interior vertices (:func:`strain_glyphs`); ``handles`` (the net's
     ``data.handles``: flat vertex ``ids``) marked on the net and, in the start shape's view
     (``view-second``), on ``f0`` with their moves to where they are on ``f`` (gid
-    ``handle-moves``)."""
+    ``handle-moves``). The colour scale runs from 0 to the largest strain, and at least to
+    ``tolerance`` (the net's ``--max-strain``): a strain within it, round-off above all, is
+    never drawn in the scale's red."""
     from matplotlib import colormaps
     from matplotlib.colors import Normalize
     from matplotlib.lines import Line2D
@@ -243,9 +255,7 @@ def strain_figure(f: np.ndarray, f0: np.ndarray, *, title: str, unit: str,
     D = strain_tensor(f, f0)
     lam1, lam2, _ = principal_strains(D)
     amount = (np.abs(lam1) + np.abs(lam2)).ravel()
-    finite = amount[np.isfinite(amount)]
-    top = float(finite.max()) if finite.size and finite.max() > 0 else 1.0
-    norm, cmap = Normalize(0.0, top), colormaps["YlOrRd"]
+    norm, cmap = Normalize(0.0, strain_scale_top(amount, tolerance)), colormaps["YlOrRd"]
     cells, ids = vertex_cells(f)
     arm1, arm2 = strain_glyphs(f, D)
     layers = [Polygons(cells, _colours(amount[ids], norm, cmap), "strain",
@@ -264,11 +274,16 @@ def strain_figure(f: np.ndarray, f0: np.ndarray, *, title: str, unit: str,
         layers.append(handle_marks(now, size))
         start += [Segments(np.stack([then, now], axis=1), HANDLE, "handle-moves",
                            linewidth=1.5), handle_marks(now, size)]
+        moved = float(np.linalg.norm(now - then, axis=1).max())
         legend.append(Line2D([], [], color=HANDLE, lw=2.2,
-                             label=f"handles ({len(ids_h)}): start → target"))
+                             label=f"handles ({len(ids_h)}): a cross where each is; on the "
+                                   "start shape a line from where it started (moves up to "
+                                   f"{moved:.3g} {unit})"))
     points = np.concatenate([f.reshape(-1, 3), np.asarray(f0, float).reshape(-1, 3)])
     return views_figure(layers, title=title, unit=unit, up=up, front=front,
-                        colour_bar=ColourBar(norm, cmap, "strain |λ1| + |λ2| (dimensionless)"),
+                        colour_bar=ColourBar(norm, cmap, "strain |λ1| + |λ2| (dimensionless)"
+                                             + (f"; --max-strain {tolerance:g}" if tolerance
+                                                else "")),
                         legend=legend, points=points,
                         instead_of_plan=("start shape (input net)", start))
 

@@ -22,7 +22,7 @@ from .render import figure
 from .scene import Polygons, Segments
 from .views import ColourBar, scale_bar_at, views_figure
 
-__all__ = ["SEAM_OK", "SEAM_STEPPED", "TEMPLATE_SIZE", "deviation_figure",
+__all__ = ["SEAM_OK", "SEAM_STEPPED", "TEMPLATE_SIZE", "deviation_figure", "quad_widths",
            "template_overlay_figure"]
 
 #: Colours of the template's outline and of the seams (stepped above the threshold, or not).
@@ -105,6 +105,19 @@ def template_overlay_figure(parts: list[tuple[str, np.ndarray, np.ndarray]], *,
                loc="upper center", bbox_to_anchor=(0.5, 0.955), ncol=3, fontsize=SMALL_PT,
                frameon=False)
     return fig
+
+
+def quad_widths(grid: np.ndarray) -> np.ndarray:
+    """The width of a strip ``grid (m, 2, d)`` (its two geodesics ``A = grid[:, 0]``, ``B =
+    grid[:, 1]``) per quad ``(m − 1, 1)``: the quad's area over its mean length along the strip
+    (the mean of its two geodesic edges), the distance across the strip whatever the slant of
+    its rulings."""
+    A, B = np.asarray(grid[:, 0], float), np.asarray(grid[:, 1], float)
+    a0, a1, b0, b1 = A[:-1], A[1:], B[:-1], B[1:]
+    area = 0.5 * (np.linalg.norm(np.cross(a1 - a0, b0 - a0), axis=-1)
+                  + np.linalg.norm(np.cross(b1 - b0, a1 - b1), axis=-1))
+    along = 0.5 * (np.linalg.norm(a1 - a0, axis=-1) + np.linalg.norm(b1 - b0, axis=-1))
+    return (area / np.where(along > 0, along, np.inf))[:, None]
 
 
 def deviation_figure(strips: list[tuple[np.ndarray, np.ndarray]], deviation: list[np.ndarray],

@@ -9,23 +9,23 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from dgpc_cli.errors import OptionSlip
 from dgpc_cli.fitting.soundness import require_sound_net
 from dgpc_cli.io.artifact import artifact_paths, file_input
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.mold import mold_files, mold_paths
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
-from dgpc_cli.io.units import same_units
+from dgpc_cli.io.units import mm_per_unit, same_units
 from dgpc_cli.mold.dxf import profile_dxf
 from dgpc_cli.mold.extract import (
     DEFAULT_FLAT_TOL,
     DEFAULT_MAX_STRAIN,
     DEFAULT_PANEL_SIZE,
     DEFAULT_TOL_FACTOR,
+    check_max_length,
     extract_mold,
-    max_length_slip,
 )
+from dgpc_cli.stages.input_status import check_inputs, with_accepted
 
 log = logging.getLogger(__name__)
 
@@ -41,10 +41,11 @@ class MoldOptions:
     max_length: object = None       # a Length as given (its unit or none), or None
     tol: float | None = None        # None: DEFAULT_TOL_FACTOR × max_strain
     max_strain: float = DEFAULT_MAX_STRAIN
+    accept_status: bool = False     # go on with nets not converged (stages.input_status)
 
 
 def _files(output: Path, opts: MoldOptions, mold, metrics: dict, loaded, unit: str, tol: float,
-           max_length: float | None) -> dict:
+           max_length: float | None, carried: list[dict]) -> dict:
     """The mold artifact's files of ``mold`` (of metrics ``metrics``) extracted from the nets
     ``loaded``."""
     paths = mold_paths(output)
@@ -78,7 +79,8 @@ def _files(output: Path, opts: MoldOptions, mold, metrics: dict, loaded, unit: s
                     "mold_max_length": max_length, "revolution_tol": tol,
                     "max_strain": opts.max_strain, "units": unit},
         metrics=metrics,
-        status={"state": "ok", "lambda_lowered": mer.lowered, "message": message},
+        status=with_accepted({"state": "ok", "lambda_lowered": mer.lowered,
+                              "message": message}, carried),
     )
 
 
@@ -89,27 +91,29 @@ def run_extract_mold(nets: list[Path], output: Path, opts: MoldOptions, *, force
     """Extract the mold of the nets ``nets`` into the mold artifact ``output``.
 
     ``check_units(unit, source)`` checks the nets' unit against the one the user expects
-    (raising where they differ); a plain ``--mold-max-length`` likely meant in mm raises
-    :class:`~dgpc_cli.errors.OptionSlip` (nothing is written); ``chosen(line)`` is given
-    the one line saying which surface of revolution the mold is; ``written(json_path)`` is
-    called once the files are written."""
+    (raising where they differ); a ``--mold-max-length`` that breaks the rule of every
+    length raises :class:`~dgpc_cli.errors.OptionSlip` (nothing is written);
+    ``chosen(line)`` is given the one line saying which surface of revolution the mold is;
+    ``written(json_path)`` is called once the files are written."""
     tol = opts.tol if opts.tol is not None else DEFAULT_TOL_FACTOR * opts.max_strain
     loaded = [(str(artifact_paths(stem)[0]), read_net(stem)) for stem in nets]
+    carried = check_inputs([(f"net{k + 1}", name, net.status)
+                            for k, (name, net) in enumerate(loaded)], "extract-mold",
+                           opts.accept_status)
     for name, net in loaded:
         require_sound_net(net.f, name)
     unit = same_units([(name, net.units) for name, net in loaded])
     check_units(unit, loaded[0][0])
     given = opts.max_length
-    max_length = given.in_units(unit, unit) if given is not None else None
+    max_length = (None if given is None
+                  else given.check("--mold-max-length", unit) / mm_per_unit(unit))
     mold = extract_mold([(name, net.f) for name, net in loaded], segments=opts.segments,
                         lam=opts.lam, panel_size=opts.panel_size, flat_tol=opts.flat_tol,
                         max_length=max_length, tol=tol, max_strain=opts.max_strain)
-    slip = max_length_slip(mold, given, unit)
-    if slip is not None:
-        raise OptionSlip(slip)
+    check_max_length(mold, given, unit)
     chosen(mold.choice_line(unit))
     metrics = mold.metrics()
-    files = _files(output, opts, mold, metrics, loaded, unit, tol, max_length)
+    files = _files(output, opts, mold, metrics, loaded, unit, tol, max_length, carried)
     write_files(with_3dm(files, output, fmt), force=force)
     json_path = mold_paths(output)["json"]
     written(json_path)

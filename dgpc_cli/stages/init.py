@@ -169,12 +169,15 @@ def mesh_net(reference: Path, method: str, *, base: str | None, direction, angle
              rows: int | None, cols: int | None, spacing: float | None,
              largest_component: bool, extend: float | None, status: Status = nullcontext,
              say: Callable[[str], None] | None = None, strip_width: float | None = None,
-             strip_width_given: bool = False, units: str = "") -> MeshNet:
+             strip_width_given: bool = False, units: str = "",
+             check_lengths: Callable[[float], None] | None = None) -> MeshNet:
     """The net of ``init REFERENCE --method METHOD`` (lengths in the mesh's unit, ``units``;
     ``extend``: the fraction of ``--extend``, None when not given; ``strip_width``: the
     largest strip width, ``layout.width``, None for none). ``status`` makes the status
     line the geodesic search updates; ``say``, when given, gets the lines that say which net
-    was chosen and, where there is something to say, how wide its strips are."""
+    was chosen and, where there is something to say, how wide its strips are;
+    ``check_lengths(diagonal)``, when given, judges the lengths given against the mesh's
+    bounding-box diagonal (in ``units``) once it is read, before any net is made."""
     from dgpc_cli.geodesics.extension import continued
     from dgpc_cli.io.mesh import load_mesh
     from dgpc_cli.layout.choice import choose
@@ -184,6 +187,8 @@ def mesh_net(reference: Path, method: str, *, base: str | None, direction, angle
     if rows is not None and cols is not None:  # refused before the mesh is read
         check_net_size(rows, cols, "--rows/--cols", "use fewer --rows or --cols")
     mesh = load_mesh(reference, pieces="largest" if largest_component else "one")
+    if check_lengths is not None:
+        check_lengths(mesh.bbox_diagonal)
     found = None
     widen_cols = cols is None and spacing is None
     if method == "geodesic":
@@ -347,7 +352,7 @@ def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, 
     )
     from dgpc_cli.layout.choice import choose
     from dgpc_cli.layout.patches import narrowed, plan, ratio_text
-    from dgpc_cli.layout.width import tell, widened_choice
+    from dgpc_cli.layout.width import require_met, tell, widened_choice
     from dgpc_cli.stages.inspect import summarize
 
     def make(m):
@@ -407,7 +412,7 @@ def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, 
     for k, p in enumerate(nets, start=1):     # every target checked before any is written
         check(stem.parent / f"{stem.name}.p{k}", force, p.mesh.path)
     nets = [narrowed(p) for p in nets]
-    written = []
+    made = []
     for k, p in enumerate(nets, start=1):
         net = p.net
         _record_choice(net, p.label, p.outcome, p.tried, options)
@@ -425,6 +430,12 @@ def patch_nets(single: NetArtifact, mesh, patches, output: Path, options: dict, 
             ReferenceSurface.from_mesh(surrounded(p.mesh, mesh, FIT_REACH * net.extend))
             if net.data.get("surroundings") else None))
         out = stem.parent / f"{stem.name}.p{k}"
+        # a given --strip-width no patch net meets: refused before any is written
+        require_met(net.data["init"]["choice"].get("strip_width"), options.get("units", ""),
+                    what=f"{out.name}: ")
+        made.append((out, net, p))
+    written = []
+    for out, net, p in made:
         files = {p.mesh.path: p.obj, **with_3dm(net_files(out, net), out, fmt)}
         write_files(files, force=force)
         if say is not None:
@@ -457,13 +468,15 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
               reference_out: Path | None = None, largest_component: bool = False,
               extend: float | None = None, patches=None, status: Status = nullcontext,
               say: Callable[[str], None] | None = None,
-              strip_width: float | None = None) -> list[Path]:
+              strip_width: float | None = None,
+              check_lengths: Callable[[float], None] | None = None) -> list[Path]:
     """Make and write the nets of ``dgpc init`` (its options checked and their lengths in
     ``units``; ``strip_width``: ``--strip-width``, None when not given: on a mesh the default
     of ``layout.width`` where ``init`` chooses the columns); the JSON paths written.
     ``check(stem, force, *extra)`` refuses a patch net's target before any is written;
     ``status`` makes the status line of the geodesic search; ``say``, when given, gets the
-    stderr lines that say what was made."""
+    stderr lines that say what was made; ``check_lengths(diagonal)`` judges the lengths given
+    against a mesh's size (:func:`mesh_net`)."""
     json_path, _ = artifact_paths(output)
     folder = json_path.resolve().parent
     files = {}
@@ -482,7 +495,7 @@ def init_nets(output: Path, *, units: str, units_given: bool, fmt: str, force: b
                         rows=rows, cols=cols, spacing=spacing,
                         largest_component=largest_component, extend=extend, status=status,
                         say=say, strip_width=strip_width, strip_width_given=given_width,
-                        units=units)
+                        units=units, check_lengths=check_lengths)
         if given_width:
             made.net.parameters["strip_width"] = strip_width
         net, mesh = made.net, made.mesh

@@ -148,18 +148,43 @@ def net_fit_surface(net: NetArtifact, json_path: Path, mesh):
     return surrounded(mesh, whole, FIT_REACH * net.extend)
 
 
+#: The largest coverage tolerance a plain number may give, as a share of the reference's
+#: bounding-box diagonal (the default is 0.2 % of it).
+COVERAGE_TOL_SHARE = 0.1
+
+
+def checked_coverage_tol(coverage_tol, units: str, mesh) -> float | None:
+    """``--coverage-tol`` (a :class:`~dgpc_cli.io.length.Length` or None: the default) in the
+    net's unit ``units``, held to the rule of every length
+    (:meth:`~dgpc_cli.io.length.Length.check`): with a reference ``mesh``, a plain number is
+    plausible up to :data:`COVERAGE_TOL_SHARE` of its bounding-box diagonal."""
+    from dgpc_cli.io.length import Span
+    from dgpc_cli.io.units import mm_per_unit
+
+    if coverage_tol is None:
+        return None
+    span = None
+    if mesh is not None:
+        diagonal = float(np.linalg.norm(np.ptp(np.asarray(mesh.vertices, float), axis=0)))
+        span = Span(0.0, COVERAGE_TOL_SHARE * diagonal * mm_per_unit(units),
+                    "coverage tolerance", low_open=True,
+                    high_text=f"{100 * COVERAGE_TOL_SHARE:g} % of the reference's diagonal "
+                              f"({COVERAGE_TOL_SHARE * diagonal:.4g} {units})")
+    return coverage_tol.check("--coverage-tol", units, span, "the net's") / mm_per_unit(units)
+
+
 def inspect_net(net: NetArtifact, json_path: Path, *, axis=None,
                 against: NetArtifact | None = None, coverage_tol=None) -> dict:
     """Metrics of a net artifact read from ``json_path``, with its recorded reference;
-    ``coverage_tol`` a :class:`~dgpc_cli.cli.length.Length`-like object with ``in_units`` or
-    None (the coverage's default tolerance)."""
+    ``coverage_tol`` a :class:`~dgpc_cli.io.length.Length` or None (the coverage's default
+    tolerance; :func:`checked_coverage_tol`)."""
     if against is not None and against.shape != net.shape:
         raise DgpcError(f"--against: grid {against.shape[0]}×{against.shape[1]} differs from "
                         f"{net.shape[0]}×{net.shape[1]}", source="--against")
     from dgpc_cli.core.reference import ReferenceSurface
 
-    tol = None if coverage_tol is None else coverage_tol.in_units(net.units, net.units)
     mesh = recorded_reference(net, json_path)
+    tol = checked_coverage_tol(coverage_tol, net.units, mesh)
     surface = (ReferenceSurface.from_mesh(net_fit_surface(net, json_path, mesh))
                if mesh is not None and net.data.get("surroundings") else None)
     return summarize(net, axis=axis, mesh=mesh, against=against, surface=surface,

@@ -17,16 +17,17 @@ from __future__ import annotations
 
 import logging
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 import shapely
 from shapely.geometry import Polygon
 
-from dgpc_cli.errors import DgpcError
+from dgpc_cli.errors import DgpcError, OptionSlip
 from dgpc_cli.io.dxf import previews
 from dgpc_cli.io.flat import PART_COLUMNS, csv_bytes, part_row
+from dgpc_cli.io.length import Length, Span
 from dgpc_cli.io.units import mm_per_unit
 from dgpc_cli.nesting.blf import Placement, Sheet, fill_sheets, inner_fit
 from dgpc_cli.nesting.drawing import mold_map_drawing, placed_part, sheet_drawing
@@ -64,11 +65,17 @@ def parse_rotations(text: str) -> list[float]:
 
 _SIDE = re.compile(r"^\s*([+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:e[+-]?\d+)?)\s*([a-z]+)?\s*$")
 
+#: Where a plain number is plausible as a sheet's side (mm): 10 mm to 100 m.
+SHEET_SPAN = Span(10.0, 1e5, "sheet side")
+
 
 def parse_sheet(text: str) -> tuple[float, float]:
     """``"2500x1250"`` → ``(2500.0, 1250.0)`` mm; each side may carry a unit (``6.1mx2.5m``),
     and one unit after the last side is both sides' (``6100x2500mm``, ``6.1x2.5m``); plain
-    numbers are mm (ValueError unless both are > 0 and the units known)."""
+    numbers are mm. ValueError (a usage error) unless both are > 0 and the units known, on a
+    side beyond the one limit of every length (:mod:`dgpc_cli.io.length`), and on plain
+    numbers outside :data:`SHEET_SPAN`, naming both readings (``6.1x2.5``: did you mean 6.1m x
+    2.5m?)."""
     parts = str(text).lower().replace("×", "x").split("x")
     sides = [_SIDE.match(p) for p in parts]
     if len(parts) != 2 or not all(sides):
@@ -78,13 +85,29 @@ def parse_sheet(text: str) -> tuple[float, float]:
     if units[0] is None:
         units[0] = units[1]
     try:
-        w, h = (float(m.group(1)) * (mm_per_unit(u) if u else 1.0)
-                for m, u in zip(sides, units, strict=True))
+        lengths = [Length(float(m.group(1)), u, "mm", typed=f"{m.group(1)}{u or ''}")
+                   for m, u in zip(sides, units, strict=True)]
+        w, h = (length.check("--sheet") for length in lengths)
     except DgpcError as err:
         raise ValueError(f"{text!r}: {err.reason}") from None
-    if not (np.isfinite(w) and np.isfinite(h) and w > 0 and h > 0):
+    except OptionSlip as slip:
+        raise ValueError(str(slip)) from None
+    if not (w > 0 and h > 0):
         raise ValueError(f"{text!r}: width and height must be > 0 mm")
+    if units[1] is None and not (SHEET_SPAN.holds(w) and SHEET_SPAN.holds(h)):
+        raise ValueError(_sheet_slip(text, w, h))
     return w, h
+
+
+def _sheet_slip(text: str, w: float, h: float) -> str:
+    """The usage error of a plain sheet size outside :data:`SHEET_SPAN`: the size read as mm,
+    and the reading likely meant."""
+    meant = next((u for u in ("m", "cm") if SHEET_SPAN.holds(w * mm_per_unit(u))
+                  and SHEET_SPAN.holds(h * mm_per_unit(u))), None)
+    guess = f"; did you mean {w:g}{meant} x {h:g}{meant}?" if meant else ""
+    off = min(w, h) if not SHEET_SPAN.holds(min(w, h)) else max(w, h)
+    return (f"{text} read as mm is a {w:g} x {h:g} mm sheet, a side {SHEET_SPAN.miss(off)}"
+            f"{guess} (to mean it as typed, give its unit: {text}mm)")
 
 
 @dataclass
@@ -105,16 +128,22 @@ class NestResult:
 
 
 def check_fit(parts: list[Part], sheet: Sheet, rotations: list[float]) -> None:
-    """DgpcError naming the first part that fits inside the margin with no allowed rotation."""
+    """DgpcError naming the first part that fits inside the margin with no allowed rotation;
+    where every part would fit on the sheet turned (width and height swapped), it says so."""
     for p in parts:
         if all(inner_fit(p, r, sheet) is None for r in rotations):
             x0, y0, x1, y1 = bounds(p.outline)
+            turned = replace(sheet, width=sheet.height, height=sheet.width)
+            swap = (f"; the sheet turned fits them: give --sheet {turned.width:g}x"
+                    f"{turned.height:g} (width first)"
+                    if all(any(inner_fit(q, r, turned) is not None for r in rotations)
+                           for q in parts) else "")
             raise DgpcError(
                 f"part {p.id} ({x1 - x0:.1f} x {y1 - y0:.1f} mm) does not fit on the "
                 f"{sheet.width:g} x {sheet.height:g} mm sheet inside its {sheet.margin:g} mm "
-                f"margin with rotations {', '.join(f'{r:g}' for r in rotations)}; use a "
-                "larger --sheet, or cut long strips into boards with `dgpc unfold "
-                "--stock-length LENGTH`", source="--sheet")
+                f"margin with rotations {', '.join(f'{r:g}' for r in rotations)}"
+                + (swap or "; use a larger --sheet, or cut long strips into boards with "
+                   "`dgpc unfold --stock-length LENGTH`"), source="--sheet")
 
 
 def check_layout(outlines: list[np.ndarray], sheets: list[int], sheet: Sheet) -> None:
@@ -190,7 +219,7 @@ def nest_parts(flat_parts: list[dict], sheet: Sheet, rotations: list[float], *,
     overall = float(area.sum() / (n * sheet.width * sheet.height))
     log.info("%d parts on %d sheets, utilization %.1f %% overall", len(parts), n,
              100 * overall)
-    warning = scale_warning(parts, util, units, scale)
+    warning = scale_warning(parts, util, units, scale, sheet)
     if warning:
         log.warning("%s", warning)
     return NestResult(parts, placements, sheet, list(rotations), util, overall, info)
@@ -203,19 +232,28 @@ LOW_UTILIZATION = 0.01
 
 
 def scale_warning(parts: list[Part], utilization: list[float], units: str,
-                  scale: float) -> str | None:
+                  scale: float, sheet: Sheet | None = None) -> str | None:
     """One line naming an implausible scale (a part under :data:`SMALL_PART_MM`, even the
-    fullest sheet less than :data:`LOW_UTILIZATION` used) and its likely fix, or None."""
+    fullest sheet less than :data:`LOW_UTILIZATION` used) and its likely fix, or None: for
+    parts not in metres, making the net in metres; for a sheet far too large for the parts,
+    the sheet's size (parts in metres already need no new net)."""
     longest = [max(np.ptp(p.outline, axis=0)) for p in parts]
     small = min(range(len(parts)), key=lambda i: longest[i])
     low = max(range(len(utilization)), key=lambda s: utilization[s])
     if longest[small] >= SMALL_PART_MM and utilization[low] >= LOW_UTILIZATION:
         return None
-    what = (f"part {parts[small].id} is {longest[small]:.3g} mm long"
-            if longest[small] < SMALL_PART_MM else
-            f"sheet {sheet_id(low)} is {100 * utilization[low]:.2g} % used")
-    return (f"implausible scale: {what} (parts in {units}, scale {scale:g}); if the net "
-            "was meant in metres, make it with `init --units m` (or give --scale)")
+    remake = "make the net with `init --units m`" if units != "m" else None
+    if longest[small] < SMALL_PART_MM:
+        what = f"part {parts[small].id} is {longest[small]:.3g} mm long"
+        fix = (f"if the net was meant in metres, {remake} (or give --scale)" if remake
+               else "check --scale")
+    else:
+        what = f"sheet {sheet_id(low)} is {100 * utilization[low]:.2g} % used"
+        size = ("" if sheet is None else
+                f" (it is {sheet.width / 1000:.4g} x {sheet.height / 1000:.4g} m)")
+        fix = f"check --sheet{size}" + (f", or if the net was meant in metres, {remake}"
+                                        if remake else "")
+    return f"implausible scale: {what} (parts in {units}, scale {scale:g}); {fix}"
 
 
 def sheet_drawings(result: NestResult, *, border: bool = False, label_style: str = "text"

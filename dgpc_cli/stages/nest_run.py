@@ -18,6 +18,7 @@ from dgpc_cli.io.sheets import extra_path, sheets_files
 from dgpc_cli.io.units import mm_per_unit, same_units
 from dgpc_cli.nesting.blf import Sheet
 from dgpc_cli.nesting.tools import ToolSettings
+from dgpc_cli.stages.input_status import check_inputs, with_accepted
 from dgpc_cli.stages.nest import (
     existing_sheet_files,
     mold_map,
@@ -48,6 +49,7 @@ class NestOptions:
     time_limit: float = 10.0
     seed: int = 0
     previews: bool = True
+    accept_status: bool = False     # go on with flats that fell short (stages.input_status)
 
 
 def _flat_parts(stems: list[Path], flats: list):
@@ -84,6 +86,8 @@ def run_nest(stems, output: Path, opts: NestOptions, *, mold_stem: Path | None, 
           *([rhino_path(output)] if fmt == "3dm" else []),
           *(existing_sheet_files(output) if not force else ()))
     flats = [read_flat(stem) for stem in stems]
+    names = ["flat"] if len(flats) == 1 else [f"flat{k + 1}" for k in range(len(flats))]
+    statuses = [(name, p, f.status) for name, p, f in zip(names, json_paths, flats, strict=True)]
     units = same_units([(str(p), f.units) for p, f in zip(json_paths, flats, strict=True)])
     check_units(units, json_paths[0])
     flat_parts, combined = _flat_parts(stems, flats)
@@ -92,8 +96,10 @@ def run_nest(stems, output: Path, opts: NestOptions, *, mold_stem: Path | None, 
         from dgpc_cli.io.mold import read_mold
 
         mold = read_mold(mold_stem)
+        statuses.append(("mold", artifact_paths(mold_stem)[0], mold.status))
         same_units([(str(json_paths[0]), units),
                     (str(artifact_paths(mold_stem)[0]), mold.units)])
+    carried = check_inputs(statuses, "nest", opts.accept_status)
     sheet = Sheet(opts.sheet_size[0], opts.sheet_size[1], opts.cutter.margin,
                   opts.cutter.spacing)
     n = len(flat_parts)
@@ -129,7 +135,7 @@ def run_nest(stems, output: Path, opts: NestOptions, *, mold_stem: Path | None, 
                          inputs=inputs, parameters=_parameters(opts, sheet, units,
                                                                mold_stem is not None),
                          metrics=metrics,
-                         status={"sheet_count": result.sheet_count,
-                                 "deterministic": opts.engine == "fill"})
+                         status=with_accepted({"sheet_count": result.sheet_count,
+                                              "deterministic": opts.engine == "fill"}, carried))
     write_files(with_3dm(files, output, fmt, parts=flat_parts), force=force)
     written(out_json)

@@ -21,7 +21,7 @@ from dgpc_cli.io.artifact import artifact_paths, file_input, recorded_file, reso
 from dgpc_cli.io.mesh import load_mesh
 from dgpc_cli.io.net import NetArtifact, read_net
 from dgpc_cli.io.units import from_mm, mm_per_unit
-from dgpc_cli.stages.inspect import net_fit_surface, summarize
+from dgpc_cli.stages.inspect import checked_coverage_tol, net_fit_surface, summarize
 from dgpc_cli.tolerances import tol as TOL
 
 log = logging.getLogger(__name__)
@@ -61,7 +61,7 @@ class OptimizeSettings:
     max_strain: float = TOL.max_strain
     gpc_tol: float = TOL.gpc_tol
     backend: str = "auto"
-    #: The coverage's tolerance, a :class:`~dgpc_cli.cli.length.Length` (None: its default).
+    #: The coverage's tolerance, a :class:`~dgpc_cli.io.length.Length` (None: its default).
     coverage_tol: object | None = None
 
 
@@ -96,6 +96,7 @@ def prepare_optimize(stem: Path, settings: OptimizeSettings, *, reference: Path 
     net = read_net(stem)
     mode, schedules = settings.mode, dict(settings.schedules)
     mesh = reference_mesh(net, json_path, reference, mode, keep=not no_reference)
+    checked_coverage_tol(settings.coverage_tol, net.units, mesh)     # a slip: before solving
     if mesh is None:  # the terms that need a reference are off, and the record says so
         schedules.update({name: Schedule.constant(0.0) for name in ("approximation", "boundary")
                           if name in schedules})
@@ -154,7 +155,9 @@ def _guided_projection(prepared: PreparedNet, schedules: dict, handle_ids, handl
         relax=RELAX.get(s.mode), gpc_tol=s.gpc_tol if s.mode == "isometric" else None,
         max_strain=s.max_strain if s.mode == "isometric" else None)
     outcome.status, outcome.message = judge(outcome, net.f_mm, mode=s.mode,
-                                            max_strain=s.max_strain, gpc_tol=s.gpc_tol)
+                                            max_strain=s.max_strain, gpc_tol=s.gpc_tol,
+                                            handles=(handle_ids, handle_targets),
+                                            units=net.units)
     return outcome
 
 
@@ -197,6 +200,6 @@ def optimized_artifact(prepared: PreparedNet, outcome: OptimizeOutcome, output: 
     result.metrics = summarize(result, mesh=mesh,
                                against=net if s.mode == "isometric" else None,
                                surface=surface.scaled(1.0 / mm) if surface is not None else None,
-                               coverage_tol=(None if s.coverage_tol is None
-                                             else s.coverage_tol.in_units(net.units, net.units)))
+                               coverage_tol=checked_coverage_tol(s.coverage_tol, net.units,
+                                                                 mesh))
     return result

@@ -3,10 +3,12 @@ own), trim them, build and write the strips artifact, warn and report what faile
 
 from __future__ import annotations
 
+import contextlib
 import logging
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from types import SimpleNamespace
 
 from dgpc_cli.errors import DgpcError, NotConverged
 from dgpc_cli.fitting.soundness import require_sound_net
@@ -15,6 +17,7 @@ from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.net import read_net
 from dgpc_cli.io.rhino import with_3dm
 from dgpc_cli.io.strips import StripsArtifact, strips_files
+from dgpc_cli.stages.input_status import check_inputs, with_accepted
 from dgpc_cli.stages.strip_fabrication import (
     DEVIATION_WARN,
     SEAM_STEP_WARN,
@@ -53,6 +56,7 @@ class PlanarizeOptions:
     ruling_fairness: float = RULING_FAIRNESS
     max_ruling_turn: float = MAX_RULING_TURN
     refine: int | None = None       # None: --refine auto
+    accept_status: bool = False     # go on with a net not converged (stages.input_status)
 
 
 def _outline(net, json_path):
@@ -105,10 +109,10 @@ class _Fitted:
     notes: list[str]          # what the trim dropped
 
 
-def _artifact(net, json_path: Path, out_json: Path, columns, outline, opts: PlanarizeOptions,
-              refine: int, fit) -> _Fitted:
+def _artifact(net, inputs: dict, columns, outline, opts: PlanarizeOptions, refine: int,
+              fit) -> _Fitted:
     """The strips artifact of the fit ``(strips, template, fallback)`` (trimmed to
-    ``outline`` where given)."""
+    ``outline`` where given), its ``inputs`` record ``inputs``."""
     strips, template, fallback = fit
     m, n = net.shape
     records = [s.record() for s in strips]
@@ -132,7 +136,7 @@ def _artifact(net, json_path: Path, out_json: Path, columns, outline, opts: Plan
                     **({"refine": refine} if refine > 1 else {}),
                     **({"template_rejected": fallback} if fallback else {})},
         template=template,
-        inputs={"net": file_input(json_path, out_json.resolve().parent)},
+        inputs=inputs,
         metrics={**strips_metrics(records, net.units),
                  "fabrication": fabrication_metrics(net.f, net.units, records,
                                                     [(s.A, s.B) for s in strips], outline,
@@ -185,6 +189,30 @@ def _auto_refine(first: _Fitted, fit_again) -> _Fitted:
     return keep
 
 
+@contextlib.contextmanager
+def _no_progress(length: int, label: str):
+    """A progress bar that shows nothing."""
+    yield SimpleNamespace(update=lambda n: None)
+
+
+def planarized(net, columns: list[int], opts: PlanarizeOptions, *, outline=None,
+               inputs: dict | None = None, progressbar: Callable = _no_progress) -> _Fitted:
+    """The strips ``planarize-strips`` makes of the strips ``columns`` of the net ``net`` (a
+    :class:`~dgpc_cli.io.net.NetArtifact`, read or in memory) with ``opts``, in memory: one
+    template where the net qualifies, else each strip on its own; ``--refine auto``
+    (``opts.refine`` None) as :func:`_auto_refine`; trimmed to ``outline`` where given. The
+    artifact records ``inputs``. Nothing is written or said but the log."""
+    reason = "--per-strip" if opts.per_strip else template_qualifies(net.f_mm, columns)
+
+    def run(refine: int) -> _Fitted:
+        return _artifact(net, inputs or {}, columns, outline, opts, refine,
+                         _fit(net, columns, opts, refine, reason, progressbar))
+
+    if opts.refine is None:
+        return _auto_refine(run(1), lambda: run(2))
+    return run(opts.refine)
+
+
 def run_planarize_strips(stem: Path, output: Path, opts: PlanarizeOptions, *, force: bool,
                          fmt, progressbar: Callable, written: Callable[[Path], None]) -> None:
     """Planarize the strips of the net ``stem`` into the strips artifact ``output``.
@@ -197,21 +225,16 @@ def run_planarize_strips(stem: Path, output: Path, opts: PlanarizeOptions, *, fo
     cross."""
     json_path, _ = artifact_paths(stem)
     net = read_net(stem)
+    carried = check_inputs([("net", json_path, net.status)], "planarize-strips",
+                           opts.accept_status)
     require_sound_net(net.f, json_path, gpc=False)
     columns = parse_strip_range(opts.strip_range, net.shape[1])
     outline = _outline(net, json_path) if opts.trim else None
-    reason = "--per-strip" if opts.per_strip else template_qualifies(net.f_mm, columns)
     out_json, _ = artifact_paths(output)
-
-    def run(refine: int) -> _Fitted:
-        return _artifact(net, json_path, out_json, columns, outline, opts, refine,
-                         _fit(net, columns, opts, refine, reason, progressbar))
-
-    if opts.refine is None:
-        done = _auto_refine(run(1), lambda: run(2))
-    else:
-        done = run(opts.refine)
+    done = planarized(net, columns, opts, outline=outline, progressbar=progressbar,
+                      inputs={"net": file_input(json_path, out_json.resolve().parent)})
     art = done.art
+    art.status = with_accepted(art.status, carried)
     failed, crossed = art.status["polish_not_converged"], art.status["rulings_cross"]
     for note in done.notes:
         log.warning("%s", note)

@@ -233,7 +233,8 @@ def _net_page(json_path: Path) -> Page:
                                "shape with each handle's move.",
                      lambda: fig.strain_figure(f, against.f, title="strain against the input "
                                                                    "net",
-                                               handles=net.data.get("handles"), **view)))
+                                               handles=net.data.get("handles"),
+                                               tolerance=_strain_tolerance(net), **view)))
     if axis is not None:
         metric = _recorded_clairaut(net.metrics) or clairaut(f, axis)
         figs.append(("clairaut", "Clairaut's relation (9): r cos α minus its mean along each "
@@ -267,11 +268,20 @@ def _input_up(inputs: dict, json_path: Path):
     return (0.0, 0.0, 1.0)
 
 
+def _strain_tolerance(net) -> float:
+    """The strain the net was asked to keep within (its ``--max-strain``, else the default)."""
+    from dgpc_cli.tolerances import tol
+
+    value = net.parameters.get("max_strain")
+    return float(value) if isinstance(value, (int, float)) and value > 0 else tol.max_strain
+
+
 def _strips_page(json_path: Path) -> Page:
     from dgpc_cli.io.strips import read_strips
     from dgpc_cli.report.camera import outward_front
-    from dgpc_cli.report.net import field_figure, width_per_quad
+    from dgpc_cli.report.net import field_figure
     from dgpc_cli.report.scene import grid_quads
+    from dgpc_cli.report.strips import quad_widths
 
     art = read_strips(json_path)
     grids = [np.stack([np.asarray(A, float), np.asarray(B, float)], axis=1)
@@ -279,11 +289,12 @@ def _strips_page(json_path: Path) -> Page:
     # seen from where the net's figures are seen: its axis up, from the outside of the strips
     up = _input_up(art.inputs, json_path)
     front = outward_front(np.concatenate([grid_quads(g) for g in grids]), up)
-    figs = [("width", "The planar-quad strips, each quad coloured by the mean length of its "
-             "two rulings (the score lines; slanted rulings are longer than the strip is wide).",
-             lambda: field_figure(grids, [width_per_quad(g) for g in grids],
+    figs = [("width", "The planar-quad strips, each quad coloured by the strip's width there "
+             "(the quad's area over its mean length along the strip: across the strip, not "
+             "along its slanted rulings).",
+             lambda: field_figure(grids, [quad_widths(g) for g in grids],
                                   title=f"{len(grids)} planar-quad strips",
-                                  label=f"ruling length [{art.units}]", unit=art.units,
+                                  label=f"strip width [{art.units}]", unit=art.units,
                                   up=up, front=front))]
     figs += _fabrication_figures(art, json_path)
     header = Header(f"{len(grids)} geodesic strips made of planar quads "

@@ -17,6 +17,7 @@ import shapely
 from shapely.geometry import LineString, Polygon
 
 from dgpc_cli.errors import DgpcError
+from dgpc_cli.io.length import Span
 from dgpc_cli.io.units import from_mm, mm_per_unit
 from dgpc_cli.nesting.template import copy_drawing, template_drawing
 from dgpc_cli.strips.boards import (
@@ -381,30 +382,54 @@ def longest_strip_mm(geometry: list) -> float:
                       float(cumulative(np.asarray(B, float))[-1])) for A, B in geometry)
 
 
-def unit_slip(geometry: list, units: str, stock_length, stagger) -> str | None:
-    """The usage error for a plain ``--stock-length`` (longer than every strip of
-    ``geometry``, mm) or else ``--stagger`` (longer than the stock length) in the strips'
-    unit that was likely meant in mm (:meth:`~dgpc_cli.cli.length.Length.unit_slip`; both
-    lengths ``Length`` or None), if any."""
+def strip_widths_mm(geometry: list) -> tuple[float, float]:
+    """The mean and the largest width of the strips ``geometry`` (mm): the distances between
+    their two boundary polylines row by row."""
+    widths = np.concatenate([np.linalg.norm(np.asarray(B, float) - np.asarray(A, float),
+                                            axis=-1) for A, B in geometry])
+    return float(widths.mean()), float(widths.max())
+
+
+#: The largest congruence tolerance a plain number may give, as a share of the parts' width.
+CONGRUENCE_SHARE = 0.01
+
+
+def checked_lengths(geometry: list, units: str, congruence_tol, stock_length, stagger
+                    ) -> tuple[float, float | None, float | None]:
+    """``--congruence-tol``, ``--stock-length`` and ``--stagger`` (
+    :class:`~dgpc_cli.io.length.Length`; the last two may be None) in mm, held to the rule of
+    every length (:meth:`~dgpc_cli.io.length.Length.check`: OptionSlip, a usage error, where
+    a length is beyond the limit or a plain number, in the strips' unit ``units``, lies outside
+    its plausible span): a congruence tolerance within :data:`CONGRUENCE_SHARE` of the parts'
+    mean width, a stock length longer than the widest part and no longer than the longest
+    strip, a stagger no longer than the stock length. The stagger's default (``stagger``
+    None) is :data:`STAGGER_FRACTION` of the stock length."""
+    k, whose = mm_per_unit(units), "the strips'"
+    mean, widest = strip_widths_mm(geometry)
+    tol_mm = congruence_tol.check("--congruence-tol", units, Span(
+        0.0, CONGRUENCE_SHARE * mean, "congruence tolerance", low_open=True,
+        high_text=f"{100 * CONGRUENCE_SHARE:g} % of the parts' mean width "
+                  f"({CONGRUENCE_SHARE * mean:.3g} mm)"), whose)
     if stock_length is None:
-        return None
+        return tol_mm, None, None
     longest = longest_strip_mm(geometry)
-    k = mm_per_unit(units)
-    slip = stock_length.unit_slip("--stock-length", units, longest,
-                                  f"every strip (the longest is {longest / k:.4g} {units})",
-                                  "the strips'")
-    if slip is None and stagger is not None:
-        stock = stock_length.to_mm(units)
-        slip = stagger.unit_slip("--stagger", units, stock,
-                                 f"the stock length ({stock / k:.4g} {units})", "the strips'")
-    return slip
+    stock_mm = stock_length.check("--stock-length", units, Span(
+        widest, longest, "stock length", low_open=True,
+        low_text=f"the widest part ({widest / k:.4g} {units})",
+        high_text=f"every strip's length (the longest is {longest / k:.4g} {units}: "
+                  "nothing to cut)"), whose)
+    if stagger is None:
+        return tol_mm, stock_mm, STAGGER_FRACTION * stock_mm
+    return tol_mm, stock_mm, stagger.check("--stagger", units, Span(
+        0.0, stock_mm, "stagger", high_text=f"the stock length ({stock_length.said(units)})"),
+        whose)
 
 
 def scale_warnings(parts: list[dict], geometry: list, units: str, stock_length) -> list[str]:
     """One-line warnings on an implausible scale (issue: no silent unit traps): a part
     shorter than :data:`MIN_PART_MM`, or a ``stock_length`` (a
-    :class:`~dgpc_cli.cli.length.Length`, or None) longer than every strip: nothing to cut (a
-    plain number that read as mm would cut is a usage error, :func:`unit_slip`). ``parts``
+    :class:`~dgpc_cli.io.length.Length`, or None) longer than every strip: nothing to cut (only
+    with its unit: a plain number that long is a usage error, :func:`checked_lengths`). ``parts``
     are the records of :func:`unfold_strips` and ``geometry`` the strips, both in mm."""
     out = []
     shortest = min(parts, key=lambda p: p["length"])
@@ -415,9 +440,7 @@ def scale_warnings(parts: list[dict], geometry: list, units: str, stock_length) 
     if stock_length is not None:
         longest = longest_strip_mm(geometry)
         if stock_length.to_mm(units) > longest:
-            where = (f" is in the strips' unit ({units})," if stock_length.unit is None
-                     else "")
-            out.append(f"--stock-length {stock_length.text()}{where} longer than every strip "
+            out.append(f"--stock-length {stock_length.said(units)} is longer than every strip "
                        f"(the longest is {longest / mm_per_unit(units):.4g} {units}): nothing "
                        "is cut into boards")
     return out

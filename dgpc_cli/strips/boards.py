@@ -194,7 +194,7 @@ def split_run(extent, start: float, stop: float, candidates: list[int], stock: f
     while True:
         if extent(a, stop) <= stock:
             if close:
-                log.warning("%s: %d joint(s) (rows %s) nearer than the stagger %.4g to the "
+                log.warning("%s: %d joint(s) (rows %s) nearer than the stagger (%.4g mm) to the "
                             "joints of the strip beside it (the nearest %.4g): no ruling "
                             "within the stock keeps it there", name, len(close),
                             ", ".join(f"{r:.6g}" for r, _ in close), stagger,
@@ -208,13 +208,13 @@ def split_run(extent, start: float, stop: float, candidates: list[int], stock: f
                                      cuttable)
             if t_max is None and t_ok is None:
                 raise DgpcError(f"{name}: from row {a:g} to row {nxt:g} (the next ruling it "
-                                f"can be cut at) is {extent(a, nxt):.6g} long, more than the "
-                                f"stock length {stock:.6g}, and no straight joint inside the "
+                                f"can be cut at) is {extent(a, nxt):.6g} mm long, more than the "
+                                f"stock length ({stock:.6g} mm), and no straight joint inside the "
                                 "quad fits the outline there", source="--stock-length")
             if t_ok is None and not relax:
                 raise DgpcError(f"{name}: no joint inside the quad after row {a:.6g} keeps "
-                                f"{stagger:.6g} from the joints of the strip beside it; use a "
-                                "smaller --stagger or a longer --stock-length",
+                                f"the stagger ({stagger:.6g} mm) from the joints of the strip "
+                                "beside it; use a smaller --stagger or a longer --stock-length",
                                 source="--stagger")
             if t_ok is None:
                 close.append((t_max, float(np.min(np.abs(at_rows(positions, t_max)
@@ -249,8 +249,9 @@ def split_run(extent, start: float, stop: float, candidates: list[int], stock: f
                 close.append((ok[0], far))
         if not ok:
             raise DgpcError(f"{name}: no ruling between rows {ends[-1]} and {ends[0]} keeps "
-                            f"{stagger:.6g} from the joints of the strip beside it; use a "
-                            "smaller --stagger or a longer --stock-length", source="--stagger")
+                            f"the stagger ({stagger:.6g} mm) from the joints of the strip "
+                            "beside it; use a smaller --stagger or a longer --stock-length",
+                            source="--stagger")
         joints.append(ok[0])
         a = ok[0]
 

@@ -91,10 +91,18 @@ def end_gaps(P: np.ndarray, Q: np.ndarray, A: np.ndarray, B: np.ndarray) -> np.n
     return out
 
 
-def net_normals_on(f: np.ndarray, column: int, points: np.ndarray) -> np.ndarray:
+def net_normals(f: np.ndarray) -> np.ndarray:
+    """Unit net normals N = T^u × T^v ``(m, n, 3)`` at the vertices of the net ``f`` (paper
+    §2.2.1, one-sided at the edges)."""
+    return tangent_frames(f, one_sided=True)[2]
+
+
+def net_normals_on(f: np.ndarray, column: int, points: np.ndarray,
+                   normals: np.ndarray | None = None) -> np.ndarray:
     """Unit net normals N = T^u × T^v (paper §2.2.1, one-sided at the edges) at the feet of
-    ``points (k, 3)`` on the net's geodesic ``f[:, column]`` (linear between rows)."""
-    N = tangent_frames(f, one_sided=True)[2][:, column]                      # (m, 3)
+    ``points (k, 3)`` on the net's geodesic ``f[:, column]`` (linear between rows);
+    ``normals`` the net's :func:`net_normals`, where the caller has them already."""
+    N = (net_normals(f) if normals is None else normals)[:, column]          # (m, 3)
     t, _ = polyline_foot(f[:, column], points)
     i = np.clip(np.floor(t), 0, len(N) - 2).astype(int)
     w = (t - i)[:, None]
@@ -222,14 +230,23 @@ def measure_strips(f: np.ndarray, strips: list[tuple[int, np.ndarray, np.ndarray
             side_ratio=side_ratios(A, B), width=strip_width(P, Q), area=strip_area(A, B),
             net_area=net_strip_area(P, Q)))
     by_v = {s.v: (s, A, B) for s, (_, A, B) in zip(out, strips, strict=True)}
+    normals = net_normals(f)
     for v, (s, _, B) in by_v.items():
         if v + 1 not in by_v:
             continue
         t, A1, _ = by_v[v + 1]
-        B, A1 = np.asarray(B, float), np.asarray(A1, float)
-        s.seams[v + 1] = seam_offsets(B, A1, net_normals_on(f, v + 1, B))
-        t.seams[v] = seam_offsets(A1, B, net_normals_on(f, v + 1, A1))
+        s.seams[v + 1], t.seams[v] = seam_pair(f, v, B, A1, normals)
     return out
+
+
+def seam_pair(f: np.ndarray, v: int, B: np.ndarray, A1: np.ndarray,
+              normals: np.ndarray | None = None) -> tuple:
+    """The seam between strip v (its copy ``B`` of the net's geodesic v+1) and strip v+1 (its
+    copy ``A1``): :func:`seam_offsets` both ways, ``(of B's vertices, of A1's)``."""
+    B, A1 = np.asarray(B, float), np.asarray(A1, float)
+    normals = net_normals(f) if normals is None else normals
+    return (seam_offsets(B, A1, net_normals_on(f, v + 1, B, normals)),
+            seam_offsets(A1, B, net_normals_on(f, v + 1, A1, normals)))
 
 
 def net_quads_deviation(f: np.ndarray, strips: list[tuple[int, np.ndarray, np.ndarray]]

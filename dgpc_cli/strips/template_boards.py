@@ -134,7 +134,7 @@ def greedy_pattern(dev: Development, candidates: np.ndarray, allowed: np.ndarray
                 continue
         if not fit:
             raise DgpcError(f"{name}: no cut of the template from {a.mean():.6g} on keeps a "
-                            f"board within the stock length {stock:.6g} and the stagger from "
+                            f"board within the stock length ({stock:.6g} mm) and the stagger from "
                             "the joints of the strips beside it; use a smaller --stagger or a "
                             "longer --stock-length", source="--stock-length")
         cuts.append(candidates[fit[0]])

@@ -1,7 +1,7 @@
 """The solver thread of ``dgpc edit``: requests from the page (or a replayed drags file) run
 one at a time on the session, off the page's thread; a newer drag of a handle supersedes one
 still waiting, and any new request abandons a settling run (it starts again when the drag
-ends). Every request answered gives a :class:`~dgpc_cli.stages.edit_session.Frame` to
+ends). Every request answered gives a :class:`~dgpc_cli.edit.session.Frame` to
 ``on_frame``, with the seconds from the request's arrival."""
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from dgpc_cli.stages.edit_session import EditSession, Frame, Superseded
+from dgpc_cli.edit.session import EditSession, Frame, Superseded
 
 log = logging.getLogger(__name__)
 
@@ -151,10 +151,10 @@ class LiveSolver:
                     self._cond.wait(REFRESH_IDLE)
                 waiting = bool(self._queue)
             if not waiting:
-                self._answer(Answer(request, s.frame(), time.perf_counter() - request.arrived,
-                                    refresh=True))
+                self._answer(Answer(request, s.frame(fabrication=self.fabrication()),
+                                    time.perf_counter() - request.arrived, refresh=True))
         else:
-            frame = s.frame(fabrication=self.fabrication() and s.settled)
+            frame = s.frame(fabrication=self.fabrication())
             self._answer(Answer(request, frame, time.perf_counter() - request.arrived, error))
         if request.end:
             self.submit(Request("settle"))

@@ -8,11 +8,11 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+from dgpc_cli.edit.live import Answer, LiveSolver, Request
+from dgpc_cli.edit.session import EditSession, Frame
 from dgpc_cli.fitting.optimize import OptimizeOutcome
 from dgpc_cli.io.atomic import write_files
 from dgpc_cli.io.drags import DragEvent
-from dgpc_cli.stages.edit_live import Answer, LiveSolver, Request
-from dgpc_cli.stages.edit_session import EditSession, Frame
 
 #: Seconds a replay waits for the solver after its last event, at most.
 REPLAY_TIMEOUT = 3600.0

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from dgpc_cli.core.solver import guided_projection, predictor_step
+from dgpc_cli.edit.page_input import vector, within_reach
 from dgpc_cli.errors import DgpcError
 from dgpc_cli.fitting.modes import SOFT
 from dgpc_cli.fitting.optimize import OptimizeOutcome, judge, net_problem
@@ -108,6 +109,8 @@ class EditSession:
     prepared: PreparedNet
     handles: dict[int, tuple[float, float, float]] = field(default_factory=dict)
     live_iter: int = LIVE_ITER
+    #: Where the pipeline's figures of a settled net are asked for (None: worked out at once).
+    fabricate: object = None
 
     def __post_init__(self):
         self.f_mm = np.array(self.prepared.net.f_mm, dtype=float)
@@ -119,6 +122,8 @@ class EditSession:
         self._factorizations = 0
         self._seconds = 0.0
         self._shown: Frame | None = None
+        self._strips = None             # the strips the live fabrication figures bend
+        self._fab_of: tuple | None = None       # (net, figures) of the last settled figures
 
     # -- what is shown -------------------------------------------------------------------
     @property
@@ -159,7 +164,8 @@ class EditSession:
         """The net on screen, coloured by strain against the input (isometric) or by the panel
         error against its own surface of revolution (revolution), pleats and creases flagged,
         with the status ``optimize`` would report: its own when settled, else the figures of
-        the net as it stands."""
+        the net as it stands; with ``fabrication``, the fabrication figures
+        (:meth:`fabrication`: the pipeline's when settled, else the live estimate)."""
         f_mm, f_in = self.f_mm, self.prepared.net.f_mm
         m, n = self.shape
         if self.mode == "isometric":
@@ -188,7 +194,7 @@ class EditSession:
                      else f"dragging ({state.replace('_', ' ')})",
                      message=message, settled=self.settled, iterations=self._iterations,
                      seconds=self._seconds, factorizations=self._factorizations,
-                     fabrication=self.fabrication() if fabrication and self.settled else None)
+                     fabrication=self.fabrication() if fabrication else None)
         return self._shown
 
     def _judged(self) -> tuple[str, str]:
@@ -218,7 +224,7 @@ class EditSession:
             return
         self._remember()
         self.handles[vid] = self.position(u, v)
-        self.outcome = None
+        self._changed()
 
     def release(self, u: int, v: int) -> None:
         """Let the handle at ``(u, v)`` go (a no-op for a vertex that is no handle)."""
@@ -227,16 +233,26 @@ class EditSession:
             return
         self._remember()
         del self.handles[vid]
+        self._changed()
+
+    def _changed(self) -> None:
+        """The handles changed without a run: the net is not settled, and the figures of
+        the last run (iterations, time) are not its own."""
         self.outcome = None
+        self._iterations = self._factorizations = 0
+        self._seconds = 0.0
 
     def drag(self, u: int, v: int, target) -> None:
         """Move the handle ``(u, v)`` (made one if it is not) to ``target`` (net units) and run
         ``live_iter`` iterations of guided projection from the net on screen, or, for up to
         ``REFACTOR − 1`` events after one, the predictor step of its last factorization."""
         vid = self.vertex_id(u, v)
+        point = vector(target, f"handle ({u}, {v}): target")
+        f_in = self.prepared.net.f_mm.reshape(-1, 3) / self.prepared.mm
+        within_reach(point, (f_in.min(axis=0), f_in.max(axis=0)), f"handle ({u}, {v}): target")
         if self.outcome is not None or vid not in self.handles:
             self._remember()         # one undo step per drag, taken at its first event
-        self.handles[vid] = tuple(float(c) for c in target)
+        self.handles[vid] = tuple(float(c) for c in point)
         self.outcome = None
         ids, targets = self.handle_arrays()
         live = self._live_problem(ids, targets)
@@ -311,6 +327,9 @@ class EditSession:
     def _restore(self, snap: _Snapshot) -> None:
         self.handles, self.f_mm, self.outcome = dict(snap.handles), snap.f_mm, snap.outcome
         self._live = None
+        # the figures of the last run are not the restored net's
+        self._iterations = self._factorizations = 0
+        self._seconds = 0.0
 
     def undo(self) -> bool:
         if not self._undo:
@@ -332,12 +351,16 @@ class EditSession:
         beside the artifact) and the net artifact ``optimize`` writes for it to ``output``
         (both overwritten: the session's own files). Returns the outcome (its ``converged``
         decides the exit code, as in ``optimize``)."""
-        outcome = self.settle()
+        out_json, _ = artifact_paths(output)
         ids, targets = self.handle_arrays()
+        if targets is not None and not np.isfinite(targets).all():
+            raise DgpcError("a handle's target is not finite: not saved", source=out_json)
+        outcome = self.settle()
         if outcome is None:
             raise DgpcError(f"--mode {self.mode} needs handles: pin or drag a vertex first",
                             source="handles")
-        out_json, _ = artifact_paths(output)
+        if not np.isfinite(outcome.f).all():
+            raise DgpcError("the settled net is not finite: not saved", source=out_json)
         handles_path = Path(handles_path or handles_file(output))
         n = self.shape[1]
         write_files({handles_path: handles_bytes(ids, n, targets / self.prepared.mm)},
@@ -349,10 +372,36 @@ class EditSession:
 
     # -- fabrication ---------------------------------------------------------------------
     def fabrication(self) -> dict:
-        """The fabrication figures of the net on screen (see :func:`fabrication_figures`)."""
-        from dgpc_cli.stages.edit_fabrication import fabrication_figures
+        """The fabrication figures of the net on screen: settled, the pipeline's own
+        (:func:`~dgpc_cli.edit.fabrication.fabrication_figures`, kept while the net stays);
+        else the live estimate bent from the last strips
+        (:func:`~dgpc_cli.edit.fabrication.live_figures`; ``{"strips": None}`` before any).
+        With a ``fabricate`` callback (the page's :class:`~dgpc_cli.edit.fabrication_worker.
+        FabricationWorker`), the pipeline's figures of a settled net are asked of it and
+        the live estimate is shown, ``pending``, until :meth:`fabricated` brings them."""
+        from dgpc_cli.edit.fabrication import fabrication_figures, live_figures
 
-        return fabrication_figures(self.f_mm, self.prepared.net.units)
+        if self.settled:
+            cached = self._fab_of
+            if cached is not None and np.array_equal(cached[0], self.f_mm):
+                return cached[1]
+            if self.fabricate is None:
+                self.fabricated(self.f_mm, fabrication_figures(self.f_mm,
+                                                               self.prepared.net.units))
+                return self._fab_of[1]
+            self.fabricate(self.f_mm.copy())
+        strips = self._strips
+        live = None if strips is None else live_figures(strips, self.f_mm)[0]
+        return {"strips": live, "mold": None, **({"pending": True} if self.settled else {})}
+
+    def fabricated(self, f_mm: np.ndarray, result: tuple) -> bool:
+        """Keep the pipeline's figures ``result`` (figures, strips) of the net ``f_mm``
+        where it is still the net on screen; whether it is."""
+        if not np.array_equal(f_mm, self.f_mm):
+            return False
+        figures, self._strips = result
+        self._fab_of = (np.array(f_mm, dtype=float), figures)
+        return True
 
 
 def handles_file(output: Path) -> Path:
