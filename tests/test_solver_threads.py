@@ -67,3 +67,23 @@ def test_loading_mkl_starts_no_process():
             "assert available_backends()[0] == 'pardiso', available_backends()\n")
     subprocess.run([sys.executable, "-c", code], check=True,
                    env={k: v for k, v in os.environ.items() if k != "PYPARDISO_MKL_RT"})
+
+
+@pytest.mark.skipif(platform.machine() != "x86_64", reason="MKL PARDISO is x86_64 only")
+@pytest.mark.parametrize("asked", [None, "AUTO", "AVX512"])
+def test_pardiso_runs_one_code_path_whatever_the_cpu(asked):
+    """MKL's reproducibility branch is fixed (AVX2, or COMPATIBLE on a CPU without it), never
+    the one the CPU or the environment would pick (AUTO: AVX-512 on one machine, AVX2 on the
+    next, and solves that round differently)."""
+    code = ("import numpy as np\n"
+            "from dgpc_cli.core.solver.linear import MKL_CBWR_AVX2, MKL_CBWR_COMPATIBLE, "
+            "PardisoSPD\n"
+            "from dgpc_cli.core.solver.normal_matrix import NormalMatrix\n"
+            "rows, cols = np.arange(3), np.arange(3)\n"
+            "solver = PardisoSPD(NormalMatrix(rows, cols, 3, 3))\n"
+            "branch = solver._solver.libmkl.MKL_CBWR_Get(1)\n"
+            "assert branch in (MKL_CBWR_AVX2, MKL_CBWR_COMPATIBLE), branch\n")
+    env = {k: v for k, v in os.environ.items() if k != "MKL_CBWR"}
+    if asked:
+        env["MKL_CBWR"] = asked
+    subprocess.run([sys.executable, "-c", code], check=True, env=env)

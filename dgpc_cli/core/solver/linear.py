@@ -24,9 +24,13 @@ import scipy.sparse.linalg as spla
 
 from dgpc_cli.core.solver.normal_matrix import NormalMatrix
 
-#: mkl_cbwr_set branch of conditional numerical reproducibility (mkl_service.h), and the
-#: number of threads PARDISO's factorization is reproducible with.
-MKL_CBWR_COMPATIBLE = 2
+#: Branches of MKL's conditional numerical reproducibility (mkl_cbwr_set, mkl_service.h): one
+#: code path whatever the CPU, so that a solve rounds alike on every machine. AVX2 (every x86-64
+#: CPU since 2013) where the CPU has it; else COMPATIBLE (SSE2 only: the 41×41 sphere push
+#: took 2× the solver time of AVX2). AUTO (2, the branch the CPU picks: AVX-512 on one machine,
+#: AVX2 on the next) moved the 9×7 timber wall by 3e-8 of its diagonal between them.
+MKL_CBWR_AVX2, MKL_CBWR_COMPATIBLE = 10, 3
+#: The number of threads PARDISO's factorization is reproducible with.
 CNR_THREADS = 2
 #: Thread policy, by problem size only (never by the machine or its load, so that artifacts are
 #: the same bytes everywhere): systems below this many unknowns are solved on one thread (the
@@ -88,9 +92,11 @@ class PardisoSPD:
         self._solver.libmkl.MKL_Set_Dynamic(0)
         self._solver.libmkl.MKL_Set_Num_Threads(solver_threads(pattern.size))
         # Conditional numerical reproducibility: PARDISO's threaded factorization otherwise
-        # rounds differently from run to run, the artifacts must be byte-deterministic
-        # (SPEC §3), and near singular roots the solver amplifies such differences.
-        self._solver.libmkl.MKL_CBWR_Set(MKL_CBWR_COMPATIBLE)
+        # rounds differently from run to run and from CPU to CPU, the artifacts must be
+        # byte-deterministic (SPEC §3), and near singular roots the solver amplifies such
+        # differences. MKL_CBWR_Set returns 0 when the CPU runs the branch.
+        if self._solver.libmkl.MKL_CBWR_Set(MKL_CBWR_AVX2) != 0:
+            self._solver.libmkl.MKL_CBWR_Set(MKL_CBWR_COMPATIBLE)
         iparm = self._solver.iparm
         iparm[0] = 1                    # the values below, not PARDISO's defaults
         iparm[1] = 0                    # minimum-degree ordering: less work than METIS here
