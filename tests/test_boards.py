@@ -175,7 +175,8 @@ def test_boards_of_templates_share_their_shapes_and_nest_at_the_bound(roof):
 @pytest.mark.parametrize("args, code, names", [
     (["--stock-length", 0], 2, "--stock-length"),
     (["--stock-length", -6], 2, "--stock-length"),
-    (["--stock-length", 0.3], 1, "--stock-length"),            # shorter than one quad
+    (["--stock-length", 0.3], 2, "--stock-length"),            # both readings refused
+    (["--stock-length", "0.3m"], 1, "--stock-length"),         # shorter than one quad
     (["--stock-length", "2.5mm"], 1, "--stock-length"),        # a unit slip: narrower than wide
     (["--stagger", 1], 2, "--stagger"),                          # needs --stock-length
     (["--stock-length", 6, "--stagger", 4], 1, "--stagger"),    # no joint can keep 4 m apart
